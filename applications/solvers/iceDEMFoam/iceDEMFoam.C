@@ -1,0 +1,146 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+Application
+    iceDEMFoam
+
+Group
+    grpLagrangianSolvers
+
+Description
+    The dilated-polyhedron DEM of libiceDEM alone, no flow solve: floes and
+    blocks (constant/iceField), plane walls, gravity (constant/g), water
+    (buoyancy) and empirical drag with a uniform current
+    (constant/iceDEMProperties). For fast studies and analytic checks.
+
+    Times come from system/controlDict: every time step (deltaT there, the
+    output interval) advances the DEM to the new time with sub-steps of the
+    DEM step (deltaT of constant/iceDEMProperties; the last sub-step is
+    shortened to land on the time exactly). At every write time the DEM
+    state goes to <time>/uniform/iceDEMState; starting from a time with
+    that file (startFrom latestTime) continues the run exactly.
+
+    Outputs under postProcessing/iceDEM/<startTime>/ (see iceDEMOutput.H and
+    doc/caseFiles.md): bodies.dat, energy.dat, VTK/ with bodies.vtk.series.
+
+    If the state of a body becomes non-finite the run stops naming the body
+    and the time.
+
+Usage
+    \b iceDEMFoam [OPTION]
+
+    Options:
+      - \par -threads \<N\>
+        Number of OpenMP threads of the DEM (default: OMP_NUM_THREADS, else
+        all cores). Results do not depend on it.
+
+    Example:
+    \verbatim
+    iceDEMFoam -case cubeDrop -threads 2
+    \endverbatim
+
+\*---------------------------------------------------------------------------*/
+
+#include "argList.H"
+#include "Time.H"
+
+#include "iceDEMCase.H"
+#include "iceDEMOutput.H"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+using namespace Foam;
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Dilated-polyhedron DEM of ice floes and blocks (libiceDEM) without"
+        " a flow solve.\n"
+        "Reads constant/iceDEMProperties, constant/iceField and constant/g;"
+        " writes postProcessing/iceDEM/<startTime>/ and the DEM state in"
+        " every written time directory (restart with startFrom latestTime)."
+    );
+    argList::noParallel();
+    argList::noFunctionObjects(true);
+    argList::addOption
+    (
+        "threads",
+        "N",
+        "Number of OpenMP threads of the DEM (default: OMP_NUM_THREADS or"
+        " all cores); results do not depend on it"
+    );
+
+    #include "setRootCase.H"
+
+    label nThreads = 0;
+    if (args.readIfPresent("threads", nThreads))
+    {
+        if (nThreads < 1)
+        {
+            FatalErrorInFunction
+                << "Option -threads " << nThreads
+                << ": the number of threads must be >= 1" << nl
+                << exit(FatalError);
+        }
+        #ifdef _OPENMP
+        omp_set_num_threads(nThreads);
+        #endif
+    }
+
+    #include "createTime.H"
+
+    #ifdef _OPENMP
+    Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;
+    #else
+    Info<< "iceDEM: built without OpenMP (1 thread)" << nl;
+    #endif
+
+    iceDEMCase demCase(runTime);
+    demCase.start();
+
+    iceDEMOutput output(demCase);
+    output.write(true);
+
+    const ::iceDEM::World& world = demCase.world();
+
+    Info<< "iceDEM: output in " << output.path() << nl
+        << "iceDEM: estimated Hertz contact time "
+        << world.estimatedContactTime() << " s, DEM step "
+        << world.settings().timeStep << " s" << nl
+        << "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl;
+
+        const long steps0 = world.stepIndex();
+        demCase.advanceTo(runTime.value());
+
+        output.write();
+        runTime.write();
+
+        const ::iceDEM::Energies e = world.energies();
+        Info<< "    DEM steps " << (world.stepIndex() - steps0)
+            << "  contacts " << world.contactCount()
+            << " (" << world.contactPairCount() << " pairs)"
+            << "  kinetic energy " << e.kinetic << " J" << nl
+            << "    ExecutionTime = " << runTime.elapsedCpuTime() << " s"
+            << "  ClockTime = " << runTime.elapsedClockTime() << " s"
+            << nl << endl;
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //

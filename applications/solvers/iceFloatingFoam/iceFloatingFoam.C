@@ -1,0 +1,223 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    This program is free software: you can redistribute it and/or modify it
+    under the terms of the GNU General Public License as published by the
+    Free Software Foundation, either version 3 of the License, or (at your
+    option) any later version. See <http://www.gnu.org/licenses/>.
+
+Application
+    iceFloatingFoam
+
+Group
+    iceDEM
+
+Description
+    Transient incompressible current below a rigid lid at the waterline
+    around a floating structure moved by OpenFOAM's sixDoFRigidBodyMotion
+    (dynamicMotionSolverFvMesh): PIMPLE on the moving mesh, any turbulence
+    model of the standard framework, MRF and fvOptions.
+
+    The structure (hull patch) feels the fluid force, gravity and the
+    restraints of constant/dynamicMeshDict; libiceDEM adds hullHydrostatics
+    (buoyancy: the kinematic pressure p has no hydrostatic part),
+    spreadMooring and iceLoad (the DEM ice load, registered on the Time
+    database by this solver). Load libiceDEM with  libs ("libiceDEM.so");
+    in controlDict.
+
+    One step:
+      1. mesh.update(): the sixDoF motion and the mesh motion;
+      2. PIMPLE: U, p and turbulence on the moved mesh;
+      3. outputs: postProcessing/hullMotion (centre of mass, roll pitch yaw,
+         velocities) and the surge/heave periods in the log.
+
+    Not yet (DEM coupling, see the TODO notes in the time loop): DEM
+    sub-cycling with the hull as a prescribed body, resolved drag, ice load
+    handed to the iceLoad restraint.
+
+    With -noFlow the structure moves alone (no mesh, no fluid force), driven
+    from the same dynamicMeshDict: the analytic checks of the restraints.
+
+Usage
+    iceFloatingFoam [-noFlow] [-parallel] [OpenFOAM options]
+
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "dynamicFvMesh.H"
+#include "dynamicMotionSolverFvMesh.H"
+#include "sixDoFRigidBodyMotionSolver.H"
+#include "singlePhaseTransportModel.H"
+#include "turbulentTransportModel.H"
+#include "pimpleControl.H"
+#include "CorrectPhi.H"
+#include "fvOptions.H"
+
+#include "structureMotion.H"
+#include "hullMotionLog.H"
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+namespace Foam
+{
+
+//- The sixDoF motion of the structure, or nullptr when the mesh is not moved
+//  by sixDoFRigidBodyMotion
+static const sixDoFRigidBodyMotion* structureMotionOf
+(
+    const dynamicFvMesh& mesh
+)
+{
+    const auto* dm = dynamic_cast<const dynamicMotionSolverFvMesh*>(&mesh);
+    if (!dm)
+    {
+        return nullptr;
+    }
+    const auto* solver =
+        dynamic_cast<const sixDoFRigidBodyMotionSolver*>(&dm->motion());
+    return solver ? &solver->motion() : nullptr;
+}
+
+} // End namespace Foam
+
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+int main(int argc, char *argv[])
+{
+    argList::addNote
+    (
+        "Incompressible current below a rigid lid around a floating structure"
+        " moved by sixDoFRigidBodyMotion (ice load, hydrostatics and mooring"
+        " from libiceDEM restraints)."
+    );
+    argList::addBoolOption
+    (
+        "noFlow",
+        "Move the structure alone with the case's dynamicMeshDict: no mesh,"
+        " no fluid force (analytic checks of the restraints)"
+    );
+
+    #include "addCheckCaseOptions.H"
+    #include "setRootCaseLists.H"
+    #include "createTime.H"
+
+    if (args.found("noFlow"))
+    {
+        #include "noFlow.H"
+    }
+
+    #include "createDynamicFvMesh.H"
+    #include "initContinuityErrs.H"
+    #include "createDyMControls.H"
+    #include "readGravitationalAcceleration.H"
+    #include "createFields.H"
+    #include "createUfIfPresent.H"
+    #include "CourantNo.H"
+    #include "setInitialDeltaT.H"
+
+    turbulence->validate();
+
+    const sixDoFRigidBodyMotion* hullPtr = structureMotionOf(mesh);
+    if (!hullPtr)
+    {
+        WarningInFunction
+            << "The mesh is not moved by sixDoFRigidBodyMotion"
+            << " (dynamicMotionSolverFvMesh + motionSolver"
+            << " sixDoFRigidBodyMotion): no structure motion output." << endl;
+    }
+    autoPtr<hullMotionLog> motionLog;
+    if (hullPtr)
+    {
+        motionLog.reset(new hullMotionLog(runTime));
+    }
+
+    // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+    Info<< "\nStarting time loop\n" << endl;
+
+    while (runTime.run())
+    {
+        #include "readDyMControls.H"
+        #include "CourantNo.H"
+        #include "setDeltaT.H"
+
+        ++runTime;
+
+        Info<< "Time = " << runTime.timeName() << nl << endl;
+
+        // TODO(DEM coupling, DESIGN.md step 1): register the ice load
+        // averaged over the previous DEM interval on runTime as the
+        // uniformDimensionedVectorFields iceLoadForce / iceLoadMoment
+        // (reduced over the processors) before the mesh moves; the iceLoad
+        // restraint reads them in mesh.update().
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (pimple.loop())
+        {
+            if (pimple.firstIter() || moveMeshOuterCorrectors)
+            {
+                // Structure motion (sixDoF) and mesh motion
+                mesh.update();
+
+                if (mesh.changing())
+                {
+                    MRF.update();
+
+                    if (correctPhi)
+                    {
+                        // Absolute flux from the mapped face velocity
+                        phi = mesh.Sf() & Uf();
+
+                        #include "correctPhi.H"
+
+                        // Flux relative to the mesh motion
+                        fvc::makeRelative(phi, U);
+                    }
+
+                    if (checkMeshCourantNo)
+                    {
+                        #include "meshCourantNo.H"
+                    }
+                }
+            }
+
+            #include "UEqn.H"
+
+            // --- Pressure corrector loop
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+
+            if (pimple.turbCorr())
+            {
+                laminarTransport.correct();
+                turbulence->correct();
+            }
+        }
+
+        // TODO(DEM coupling, DESIGN.md step 3): sub-cycle the DEM from
+        // t - deltaT to t with the hull as a prescribed body, its pose
+        // interpolated between the old and new sixDoF states; resolved drag
+        // samples U here; accumulate the ice impulse on the hull for the
+        // next step's iceLoad.
+
+        if (motionLog.valid())
+        {
+            motionLog->write(*hullPtr);
+        }
+
+        runTime.write();
+
+        runTime.printExecutionTime(Info);
+    }
+
+    Info<< "End\n" << endl;
+
+    return 0;
+}
+
+
+// ************************************************************************* //

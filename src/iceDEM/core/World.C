@@ -1,0 +1,746 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "World.H"
+#include "contact/NarrowPhase.H"
+#include "contact/NeighbourList.H"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace iceDEM
+{
+
+namespace
+{
+
+//- Loops shorter than this run on one thread: a parallel region costs more
+//  than it saves (and spins badly on a loaded machine)
+constexpr int minParallelLoop = 256;
+
+//- Rotation of the free rigid body by the symplectic splitting about the
+//  principal axes (x, y, z, y, x): each sub-rotation is exact, |L| is kept
+//  exactly and the energy error stays bounded
+void rotateFree(Quat& q, const Vec3& L, const Vec3& invI, double dt)
+{
+    Vec3 pi = q.toRotationMatrix().transpose()*L;
+    auto sub = [&](int k, double h)
+    {
+        const double angle = h*pi[k]*invI[k];
+        if (angle == 0) return;
+        const Eigen::AngleAxisd rot(angle, Vec3::Unit(k));
+        // The frame turns by +angle: body components turn by -angle
+        pi = rot.inverse()*pi;
+        q = q*Quat(rot);
+    };
+    sub(0, 0.5*dt);
+    sub(1, 0.5*dt);
+    sub(2, dt);
+    sub(1, 0.5*dt);
+    sub(0, 0.5*dt);
+    q.normalize();
+}
+
+} // anonymous namespace
+
+
+World::World(const WorldSettings& settings)
+:
+    settings_(settings),
+    law_(ContactLaw::New(settings.contact))
+{
+    if (!(settings_.timeStep > 0))
+    {
+        throw Error("the DEM time step must be > 0", "deltaT");
+    }
+    if (!(settings_.parallelEdgeSin > 0 && settings_.parallelEdgeSin < 1))
+    {
+        throw Error("parallelEdgeSin must be in (0, 1)", "parallelEdgeSin");
+    }
+    if (!(settings_.contactCheckVelocity > 0))
+    {
+        throw Error("contactCheckVelocity must be > 0", "contactCheckVelocity");
+    }
+    if (!(settings_.contactStepsMin > 0) || settings_.contactStepsWarn < settings_.contactStepsMin)
+    {
+        throw Error("need 0 < contactStepsMin <= contactStepsWarn", "contactStepsMin");
+    }
+}
+
+
+World::~World() = default;
+
+
+int World::addMaterial(const Material& m)
+{
+    checkMaterial(m);
+    if (materialIndex(m.name) >= 0)
+    {
+        throw Error("material " + m.name + " defined twice", m.name);
+    }
+    const int M = static_cast<int>(materials_.size());
+    std::vector<PairProperties> props((M + 1)*(M + 1));
+    for (int a = 0; a < M; ++a)
+    {
+        for (int b = 0; b < M; ++b)
+        {
+            props[a*(M + 1) + b] = pairProps_[a*M + b];
+        }
+    }
+    pairProps_.swap(props);
+    materials_.push_back(m);
+    return M;
+}
+
+
+int World::materialIndex(const std::string& name) const
+{
+    for (int k = 0; k < int(materials_.size()); ++k)
+    {
+        if (materials_[k].name == name) return k;
+    }
+    return -1;
+}
+
+
+void World::setPairProperties(int a, int b, const PairProperties& p)
+{
+    checkPairProperties(p);
+    const int M = static_cast<int>(materials_.size());
+    pairProps_[a*M + b] = p;
+    pairProps_[b*M + a] = p;
+}
+
+
+int World::addShape(const DilatedShape& s)
+{
+    if (int(s.core().vertices().size()) > maxShapeVertices)
+    {
+        std::ostringstream msg;
+        msg << "a shape has " << s.core().vertices().size()
+            << " core vertices; at most " << maxShapeVertices << " are supported";
+        throw Error(msg.str(), "points");
+    }
+    shapes_.push_back(s);
+    return static_cast<int>(shapes_.size()) - 1;
+}
+
+
+int World::addBody
+(
+    int shape,
+    int material,
+    const Vec3& position,
+    const Quat& orientation,
+    const Vec3& velocity,
+    const Vec3& omega,
+    BodyMotion motion,
+    int id
+)
+{
+    if (shape < 0 || shape >= int(shapes_.size()))
+    {
+        throw Error("body refers to a shape that does not exist", "shape");
+    }
+    if (material < 0 || material >= int(materials_.size()))
+    {
+        throw Error("body refers to a material that does not exist", "material");
+    }
+    const DilatedShape& S = shapes_[shape];
+    Body b;
+    b.id = id >= 0 ? id : static_cast<int>(bodies_.size());
+    b.shape = shape;
+    b.material = material;
+    b.motion = motion;
+    const double rho = materials_[material].density;
+    b.mass = rho*S.volume();
+    b.invInertia = (rho*S.principalInertia()).cwiseInverse();
+    const Quat Q = orientation.normalized();
+    b.x = position + Q*S.centroidInput();
+    b.q = (Q*S.principalToInput()).normalized();
+    b.v = motion == BodyMotion::fixed ? Vec3::Zero() : velocity;
+    b.setOmega(motion == BodyMotion::fixed ? Vec3::Zero() : omega);
+    bodies_.push_back(b);
+    initialised_ = false;
+    return static_cast<int>(bodies_.size()) - 1;
+}
+
+
+void World::addWall(const Wall& w)
+{
+    if (materialIndex(materials_.at(w.material).name) < 0 || !(w.normal.norm() > 0))
+    {
+        throw Error("wall " + w.name + ": needs a material and a non-zero normal", w.name);
+    }
+    Wall wall(w);
+    wall.normal.normalize();
+    walls_.push_back(wall);
+}
+
+
+void World::addForceModel(const std::shared_ptr<BodyForceModel>& m)
+{
+    forceModels_.push_back(m);
+}
+
+
+void World::removeBodies(const std::vector<bool>& remove)
+{
+    if (initialised_)
+    {
+        throw Error("bodies can only be removed before the run starts");
+    }
+    std::vector<Body> kept;
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+    {
+        if (i >= remove.size() || !remove[i]) kept.push_back(bodies_[i]);
+    }
+    bodies_.swap(kept);
+}
+
+
+void World::updateWorldVertices()
+{
+    const int N = static_cast<int>(bodies_.size());
+    if (int(vertexOffset_.size()) != N + 1)
+    {
+        vertexOffset_.assign(N + 1, 0);
+        for (int i = 0; i < N; ++i)
+        {
+            vertexOffset_[i + 1] =
+                vertexOffset_[i] + int(shapeOf(i).core().vertices().size());
+        }
+        worldVertices_.resize(vertexOffset_[N]);
+    }
+    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    for (int i = 0; i < N; ++i)
+    {
+        const Body& b = bodies_[i];
+        const Mat3 R = b.rotation();
+        const auto& V = shapeOf(i).core().vertices();
+        Vec3* w = worldVertices_.data() + vertexOffset_[i];
+        for (std::size_t k = 0; k < V.size(); ++k)
+        {
+            w[k] = R*V[k] + b.x;
+        }
+    }
+}
+
+
+double World::estimatedContactTime() const
+{
+    double tc = std::numeric_limits<double>::max();
+    const int M = static_cast<int>(materials_.size());
+    for (const Body& b : bodies_)
+    {
+        if (!b.isFree()) continue;
+        double Estar = 0;
+        for (int m = 0; m < M; ++m)
+        {
+            Estar = std::max
+            (
+                Estar,
+                PairCoefficients::make(materials_[b.material], materials_[m], PairProperties()).Estar
+            );
+        }
+        const double r = shapes_[b.shape].radius();
+        tc = std::min
+        (
+            tc,
+            ContactLaw::hertzContactTime(0.5*b.mass, r, Estar, settings_.contactCheckVelocity)
+        );
+    }
+    return tc;
+}
+
+
+void World::initialise(bool restart)
+{
+    warnings_.clear();
+    const int M = static_cast<int>(materials_.size());
+    pairCoeffs_.resize(M*M);
+    for (int a = 0; a < M; ++a)
+    {
+        for (int b = 0; b < M; ++b)
+        {
+            pairCoeffs_[a*M + b] =
+                PairCoefficients::make(materials_[a], materials_[b], pairProps_[a*M + b]);
+        }
+    }
+
+    double skin = settings_.skin;
+    if (!(skin > 0))
+    {
+        skin = std::numeric_limits<double>::max();
+        for (const Body& b : bodies_) skin = std::min(skin, shapeOf(&b - bodies_.data()).radius());
+        if (bodies_.empty()) skin = 1;
+    }
+
+    // Time step against the Hertz contact time
+    if (!bodies_.empty())
+    {
+        const double tc = estimatedContactTime();
+        const double steps = tc/settings_.timeStep;
+        std::ostringstream msg;
+        msg << "DEM time step " << settings_.timeStep << " s resolves the estimated"
+            << " Hertz contact time " << tc << " s (impact at "
+            << settings_.contactCheckVelocity << " m/s) with " << steps << " steps";
+        if (steps < settings_.contactStepsMin)
+        {
+            throw Error(msg.str() + "; at least contactStepsMin = "
+              + std::to_string(settings_.contactStepsMin) + " are needed: reduce deltaT", "deltaT");
+        }
+        if (steps < settings_.contactStepsWarn)
+        {
+            warnings_.push_back(msg.str() + " (fewer than contactStepsWarn)");
+        }
+    }
+
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+    {
+        modelForce_.resize(bodies_.size());
+        modelTorque_.resize(bodies_.size());
+    }
+
+    vertexOffset_.clear();
+    updateWorldVertices();
+    nlist_ = std::make_unique<NeighbourList>(skin);
+    nlist_->build(*this);
+
+    // Overlaps at start: intersecting cores are always an error
+    for (const ContactPair& p : nlist_->pairs())
+    {
+        if (p.isWall()) continue;
+        const BodyView A{&shapeOf(p.i), worldVertices(p.i), bodies_[p.i].rotation(), bodies_[p.i].x};
+        const BodyView B{&shapeOf(p.j), worldVertices(p.j), bodies_[p.j].rotation(), bodies_[p.j].x};
+        if (coresIntersect(A, B))
+        {
+            std::ostringstream msg;
+            msg << "bodies " << bodies_[p.i].id << " and " << bodies_[p.j].id
+                << " overlap at the start (their cores intersect)";
+            throw Error(msg.str(), "bodies");
+        }
+    }
+
+    if (restart)
+    {
+        // Contact histories of the saved state into their pairs
+        auto& pairs = nlist_->pairs();
+        for (const ContactRecord& r : pendingRecords_)
+        {
+            auto it = std::find_if
+            (
+                pairs.begin(), pairs.end(),
+                [&](const ContactPair& p) { return p.i == r.i && p.j == r.j; }
+            );
+            if (it == pairs.end() || it->nContacts >= maxContactsPerPair)
+            {
+                throw Error("a saved contact does not match the bodies' positions", "contacts");
+            }
+            StoredContact& c = it->contacts[it->nContacts++];
+            c = StoredContact();
+            c.featureI = r.featureI;
+            c.featureJ = r.featureJ;
+            c.xi = r.xi;
+        }
+        pendingRecords_.clear();
+        // Contact geometry and counts for output, without touching the springs
+        std::vector<Vec3> F(bodies_.size()), T(bodies_.size());
+        for (std::size_t i = 0; i < bodies_.size(); ++i)
+        {
+            F[i] = bodies_[i].force;
+            T[i] = bodies_[i].torque;
+        }
+        std::vector<ContactPair> saved = nlist_->pairs();
+        computeForces(0);
+        nlist_->pairs() = saved;
+        for (std::size_t i = 0; i < bodies_.size(); ++i)
+        {
+            bodies_[i].force = F[i];
+            bodies_[i].torque = T[i];
+        }
+    }
+    else
+    {
+        computeForces(0);
+        for (const ContactPair& p : nlist_->pairs())
+        {
+            if (p.nContacts > 0 && !p.isWall())
+            {
+                std::ostringstream msg;
+                msg << "bodies " << bodies_[p.i].id << " and " << bodies_[p.j].id
+                    << " touch at the start (overlap " << p.contacts[0].overlap
+                    << " m): move them apart";
+                throw Error(msg.str(), "bodies");
+            }
+        }
+    }
+    initialised_ = true;
+}
+
+
+void World::computeForces(double dtTangential)
+{
+    auto& pairs = nlist_->pairs();
+    const int nPairs = static_cast<int>(pairs.size());
+    const int M = static_cast<int>(materials_.size());
+    NarrowPhaseSettings nps;
+    nps.parallelEdgeSin = settings_.parallelEdgeSin;
+
+    #pragma omp parallel if(nPairs >= minParallelLoop)
+    {
+        FoundContact found[maxContactsPerPair];
+        StoredContact previous[maxContactsPerPair];
+
+        #pragma omp for schedule(dynamic, 64)
+        for (int k = 0; k < nPairs; ++k)
+        {
+            ContactPair& p = pairs[k];
+            const Body& bi = bodies_[p.i];
+            const BodyView A{&shapeOf(p.i), worldVertices(p.i), bi.rotation(), bi.x};
+
+            int nFound;
+            int matJ;
+            const Body* bj = nullptr;
+            if (p.isWall())
+            {
+                const Wall& w = walls_[p.wall()];
+                nFound = findWallContacts(A, w.point, w.normal, found, maxContactsPerPair);
+                matJ = w.material;
+            }
+            else
+            {
+                bj = &bodies_[p.j];
+                const BodyView B{&shapeOf(p.j), worldVertices(p.j), bj->rotation(), bj->x};
+                nFound = findContacts(A, B, nps, p.axis, found, maxContactsPerPair);
+                matJ = bj->material;
+            }
+
+            const int nPrev = p.nContacts;
+            std::copy(p.contacts, p.contacts + nPrev, previous);
+
+            p.nContacts = 0;
+            p.forceOnJ.setZero();
+            p.torqueOnI.setZero();
+            p.torqueOnJ.setZero();
+            p.elasticEnergy = 0;
+            if (nFound == 0)
+            {
+                continue;
+            }
+
+            const PairCoefficients& coeffs = pairCoeffs_[bi.material*M + matJ];
+            double mEff;
+            if (!bj || !bj->isFree()) mEff = bi.mass;
+            else if (!bi.isFree()) mEff = bj->mass;
+            else mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
+
+            const Vec3 wi = bi.omega();
+            const Vec3 wj = bj ? bj->omega() : Vec3::Zero();
+
+            for (int c = 0; c < nFound; ++c)
+            {
+                const FoundContact& fc = found[c];
+                StoredContact& sc = p.contacts[p.nContacts++];
+                sc.featureI = fc.featureA;
+                sc.featureJ = fc.featureB;
+                sc.xi.setZero();
+                for (int m = 0; m < nPrev; ++m)
+                {
+                    if (previous[m].featureI == fc.featureA && previous[m].featureJ == fc.featureB)
+                    {
+                        sc.xi = previous[m].xi;
+                        break;
+                    }
+                }
+                const Vec3& x = fc.g.point;
+                Vec3 vRel = -(bi.v + wi.cross(x - bi.x));
+                if (bj) vRel += bj->v + wj.cross(x - bj->x);
+
+                const ContactResult r =
+                    law_->evaluate(coeffs, fc.g, mEff, vRel, sc.xi, dtTangential);
+
+                sc.point = x;
+                sc.normal = fc.g.normal;
+                sc.forceOnJ = r.forceOnJ;
+                sc.overlap = fc.g.overlap;
+                sc.type = fc.g.type;
+
+                p.forceOnJ += r.forceOnJ;
+                p.torqueOnI += (x - bi.x).cross(-r.forceOnJ);
+                if (bj) p.torqueOnJ += (x - bj->x).cross(r.forceOnJ);
+                p.elasticEnergy += r.elasticEnergy;
+            }
+        }
+    }
+
+    // Per-body sums in a fixed order
+    const int N = static_cast<int>(bodies_.size());
+    for (auto& m : modelForce_) m.setZero();
+    for (auto& m : modelTorque_) m.setZero();
+    modelForce_.resize(N, Vec3::Zero());
+    modelTorque_.resize(N, Vec3::Zero());
+
+    #pragma omp parallel if(N >= minParallelLoop)
+    {
+        #pragma omp for schedule(static)
+        for (int b = 0; b < N; ++b)
+        {
+            Body& body = bodies_[b];
+            Vec3 F = Vec3::Zero();
+            Vec3 T = Vec3::Zero();
+            for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+            {
+                const ContactPair& p = pairs[nlist_->bodyPair(k)];
+                if (p.i == b)
+                {
+                    F -= p.forceOnJ;
+                    T += p.torqueOnI;
+                }
+                else
+                {
+                    F += p.forceOnJ;
+                    T += p.torqueOnJ;
+                }
+            }
+            body.contactForce = F;
+            body.contactTorque = T;
+        }
+
+        // Body-force models on static chunks (each body independent)
+        if (!forceModels_.empty())
+        {
+            #ifdef _OPENMP
+            const int nt = omp_get_num_threads();
+            const int t = omp_get_thread_num();
+            #else
+            const int nt = 1;
+            const int t = 0;
+            #endif
+            const int begin = static_cast<int>(static_cast<long>(N)*t/nt);
+            const int end = static_cast<int>(static_cast<long>(N)*(t + 1)/nt);
+            for (const auto& m : forceModels_)
+            {
+                m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+            }
+        }
+        #pragma omp barrier
+
+        #pragma omp for schedule(static)
+        for (int b = 0; b < N; ++b)
+        {
+            Body& body = bodies_[b];
+            body.force = body.contactForce + modelForce_[b];
+            body.torque = body.contactTorque + modelTorque_[b];
+            if (body.isFree())
+            {
+                body.force += body.mass*settings_.gravity;
+            }
+        }
+    }
+
+    contactCount_ = 0;
+    elasticEnergy_ = 0;
+    for (const ContactPair& p : pairs)
+    {
+        contactCount_ += p.nContacts;
+        elasticEnergy_ += p.elasticEnergy;
+    }
+}
+
+
+void World::integrateFirstHalf(double dt)
+{
+    const int N = static_cast<int>(bodies_.size());
+    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    for (int i = 0; i < N; ++i)
+    {
+        Body& b = bodies_[i];
+        if (!b.isFree()) continue;
+        b.v += 0.5*dt/b.mass*b.force;
+        b.L += 0.5*dt*b.torque;
+        b.x += dt*b.v;
+        rotateFree(b.q, b.L, b.invInertia, dt);
+    }
+}
+
+
+void World::integrateSecondHalf(double dt)
+{
+    const int N = static_cast<int>(bodies_.size());
+    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    for (int i = 0; i < N; ++i)
+    {
+        Body& b = bodies_[i];
+        if (!b.isFree()) continue;
+        b.v += 0.5*dt/b.mass*b.force;
+        b.L += 0.5*dt*b.torque;
+    }
+}
+
+
+void World::stepBy(double dt)
+{
+    if (!initialised_)
+    {
+        initialise();
+    }
+    integrateFirstHalf(dt);
+    updateWorldVertices();
+    if (nlist_->needsRebuild(bodies_))
+    {
+        nlist_->build(*this);
+    }
+    computeForces(dt);
+    integrateSecondHalf(dt);
+    time_ += dt;
+    ++step_;
+}
+
+
+void World::step()
+{
+    stepBy(settings_.timeStep);
+}
+
+
+void World::advanceTo(double t)
+{
+    const double dt = settings_.timeStep;
+    // Steps shorter than this fraction of dt are merged into the last one
+    constexpr double mergeFraction = 1e-6;
+    while (t - time_ > mergeFraction*dt)
+    {
+        const double remaining = t - time_;
+        if (remaining < (1 + mergeFraction)*dt)
+        {
+            stepBy(remaining);
+            time_ = t;
+        }
+        else
+        {
+            stepBy(dt);
+        }
+    }
+}
+
+
+void World::setPrescribedState
+(
+    int i,
+    const Vec3& x,
+    const Quat& q,
+    const Vec3& v,
+    const Vec3& omega
+)
+{
+    Body& b = bodies_.at(i);
+    if (b.motion != BodyMotion::prescribed)
+    {
+        throw Error("setPrescribedState on a body whose motion is not prescribed");
+    }
+    b.x = x;
+    b.q = q.normalized();
+    b.v = v;
+    b.setOmega(omega);
+}
+
+
+int World::contactPairCount() const
+{
+    int n = 0;
+    if (nlist_)
+    {
+        for (const ContactPair& p : nlist_->pairs()) n += p.nContacts > 0;
+    }
+    return n;
+}
+
+
+long World::neighbourListBuilds() const
+{
+    return nlist_ ? nlist_->builds() : 0;
+}
+
+
+Energies World::energies() const
+{
+    Energies e;
+    for (const Body& b : bodies_)
+    {
+        if (!b.isFree()) continue;
+        e.kinetic += b.kineticEnergy();
+        e.gravitational -= b.mass*settings_.gravity.dot(b.x);
+    }
+    e.elastic = elasticEnergy_;
+    return e;
+}
+
+
+std::vector<ContactRecord> World::contactRecords() const
+{
+    std::vector<ContactRecord> records;
+    if (!nlist_) return pendingRecords_;
+    for (const ContactPair& p : nlist_->pairs())
+    {
+        for (int c = 0; c < p.nContacts; ++c)
+        {
+            records.push_back
+            (
+                {p.i, p.j, p.contacts[c].featureI, p.contacts[c].featureJ, p.contacts[c].xi}
+            );
+        }
+    }
+    return records;
+}
+
+
+void World::setContactRecords(const std::vector<ContactRecord>& records)
+{
+    pendingRecords_ = records;
+}
+
+
+std::vector<World::ContactInfo> World::contacts() const
+{
+    std::vector<ContactInfo> list;
+    if (!nlist_) return list;
+    for (const ContactPair& p : nlist_->pairs())
+    {
+        for (int c = 0; c < p.nContacts; ++c)
+        {
+            const StoredContact& s = p.contacts[c];
+            list.push_back({p.i, p.j, s.type, s.point, s.normal, s.forceOnJ, s.overlap});
+        }
+    }
+    return list;
+}
+
+
+void World::checkFinite() const
+{
+    for (const Body& b : bodies_)
+    {
+        if
+        (
+            !b.x.allFinite() || !b.v.allFinite() || !b.L.allFinite()
+         || !b.q.coeffs().allFinite() || !b.force.allFinite()
+        )
+        {
+            std::ostringstream msg;
+            msg << "body " << b.id << " has a non-finite state at time " << time_
+                << " (x = " << b.x.transpose() << ", v = " << b.v.transpose()
+                << "): the time step is probably too large";
+            throw Error(msg.str());
+        }
+    }
+}
+
+} // namespace iceDEM

@@ -1,0 +1,197 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "ContactLaw.H"
+
+#include <algorithm>
+#include <cmath>
+
+namespace iceDEM
+{
+
+const char* featurePairName(FeaturePair t)
+{
+    switch (t)
+    {
+        case FeaturePair::vertexVertex: return "vertexVertex";
+        case FeaturePair::vertexEdge: return "vertexEdge";
+        case FeaturePair::vertexFace: return "vertexFace";
+        case FeaturePair::edgeEdge: return "edgeEdge";
+        case FeaturePair::vertexWall: return "vertexWall";
+    }
+    return "unknown";
+}
+
+
+namespace
+{
+
+//- Hertz with the equivalent radius of each feature pair
+class HertzLaw : public ContactLaw
+{
+public:
+    using ContactLaw::ContactLaw;
+
+    const char* name() const override { return "hertz"; }
+
+    double equivalentRadius(const ContactGeometry& g) const override
+    {
+        const double ri = g.radiusI, rj = g.radiusJ;
+        switch (g.type)
+        {
+            case FeaturePair::vertexVertex:
+                return ri*rj/(ri + rj);
+            case FeaturePair::vertexEdge:
+                return std::sqrt(ri*ri*rj/(ri + rj));
+            case FeaturePair::vertexFace:
+            case FeaturePair::vertexWall:
+                return ri;
+            case FeaturePair::edgeEdge:
+            {
+                const double r = std::sqrt(ri*rj);
+                return std::min(r/g.sinAngle, settings_.maxEdgeRadiusRatio*r);
+            }
+        }
+        return ri;
+    }
+};
+
+
+//- Hertz with one equivalent radius for every feature pair
+class HertzSimplifiedLaw : public ContactLaw
+{
+public:
+    using ContactLaw::ContactLaw;
+
+    const char* name() const override { return "hertzSimplified"; }
+
+    double equivalentRadius(const ContactGeometry& g) const override
+    {
+        if (g.type == FeaturePair::vertexWall)
+        {
+            return g.radiusI;
+        }
+        return g.radiusI*g.radiusJ/(g.radiusI + g.radiusJ);
+    }
+};
+
+} // anonymous namespace
+
+
+ContactLaw::ContactLaw(const ContactLawSettings& s)
+:
+    settings_(s),
+    mindlin_(s.tangentialModel == "mindlin")
+{
+    if (s.tangentialModel != "mindlin" && s.tangentialModel != "ratio")
+    {
+        throw Error
+        (
+            "unknown tangentialModel '" + s.tangentialModel
+          + "'; valid: 2(mindlin ratio)",
+            "tangentialModel"
+        );
+    }
+    if (!(s.tangentialStiffnessRatio >= 0))
+    {
+        throw Error("tangentialStiffnessRatio must be >= 0", "tangentialStiffnessRatio");
+    }
+    if (!(s.maxEdgeRadiusRatio >= 1))
+    {
+        throw Error("maxEdgeRadiusRatio must be >= 1", "maxEdgeRadiusRatio");
+    }
+}
+
+
+std::vector<std::string> ContactLaw::names()
+{
+    return {"hertz", "hertzSimplified"};
+}
+
+
+std::unique_ptr<ContactLaw> ContactLaw::New(const ContactLawSettings& s)
+{
+    if (s.model == "hertz") return std::make_unique<HertzLaw>(s);
+    if (s.model == "hertzSimplified") return std::make_unique<HertzSimplifiedLaw>(s);
+
+    std::string valid;
+    for (const auto& n : names()) valid += " " + n;
+    throw Error
+    (
+        "unknown contactModel '" + s.model + "'; valid: "
+      + std::to_string(names().size()) + "(" + valid.substr(1) + ")",
+        "contactModel"
+    );
+}
+
+
+ContactResult ContactLaw::evaluate
+(
+    const PairCoefficients& c,
+    const ContactGeometry& g,
+    double mEff,
+    const Vec3& vRel,
+    Vec3& xi,
+    double dt
+) const
+{
+    const double R = equivalentRadius(g);
+    const double delta = g.overlap;
+    const double sqrtRd = std::sqrt(R*delta);
+    const Vec3& n = g.normal;
+
+    // Normal: Hertz + viscous damping, never tensile
+    const double vn = vRel.dot(n);                      // > 0: separating
+    const double Sn = 2*c.Estar*sqrtRd;                 // dF/ddelta
+    const double elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
+    const double damping = 2*std::sqrt(5.0/6.0)*c.beta*std::sqrt(mEff*Sn);
+    const double Fn = std::max(0.0, elastic - damping*vn);
+
+    // Tangential spring: rotate into the current tangent plane, keep length
+    const double xiLen = xi.norm();
+    xi -= xi.dot(n)*n;
+    const double xiProj = xi.norm();
+    if (xiProj > 0)
+    {
+        xi *= xiLen/xiProj;
+    }
+    const Vec3 vt = vRel - vn*n;
+    xi += vt*dt;
+
+    const double kt = mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn;
+    Vec3 Ft = -kt*xi;
+    const double FtMax = c.friction*Fn;
+    const double FtLen = Ft.norm();
+    if (FtLen > FtMax)
+    {
+        // Sliding: the spring holds the Coulomb limit
+        if (FtLen > 0)
+        {
+            Ft *= FtMax/FtLen;
+        }
+        xi = kt > 0 ? Vec3(-Ft/kt) : Vec3(Vec3::Zero());
+    }
+
+    ContactResult r;
+    // Force on j: pushed along +n
+    r.forceOnJ = Fn*n + Ft;
+    r.normalForce = Fn;
+    r.elasticEnergy = 0.4*elastic*delta + (kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
+    return r;
+}
+
+
+double ContactLaw::hertzContactTime
+(
+    double mEff,
+    double Rstar,
+    double Estar,
+    double v
+)
+{
+    return 2.87*std::pow(mEff*mEff/(Rstar*Estar*Estar*v), 0.2);
+}
+
+} // namespace iceDEM

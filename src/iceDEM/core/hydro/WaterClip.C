@@ -1,0 +1,375 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "WaterClip.H"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace iceDEM
+{
+
+namespace
+{
+
+//- Volume and first moment of a set of tetrahedra
+struct VolumeSum
+{
+    double volume = 0;
+    Vec3 first = Vec3::Zero();
+
+    //- Add (sign +1) or remove (sign -1) the tetrahedron (a, b, c, d)
+    void add(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+             double sign = 1)
+    {
+        const double v =
+            sign*std::abs((b - a).dot((c - a).cross(d - a)))/6.0;
+        volume += v;
+        first += (0.25*v)*(a + b + c + d);
+    }
+};
+
+//- Point where the edge from a (height sa < 0) to b (height sb >= 0)
+//  crosses the plane
+inline Vec3 cut(const Vec3& a, double sa, const Vec3& b, double sb)
+{
+    const double t = sa/(sa - sb);
+    return a + t*(b - a);
+}
+
+//- Add the part of the tetrahedron p[0..3] with heights s[0..3] above the
+//  plane that lies below it (s < 0)
+void addClippedTetrahedron(const Vec3 p[4], const double s[4], VolumeSum& sum)
+{
+    int below[4];
+    int above[4];
+    int nb = 0;
+    int na = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+        if (s[k] < 0)
+        {
+            below[nb++] = k;
+        }
+        else
+        {
+            above[na++] = k;
+        }
+    }
+
+    switch (nb)
+    {
+        case 0:
+        {
+            return;
+        }
+        case 4:
+        {
+            sum.add(p[0], p[1], p[2], p[3]);
+            return;
+        }
+        case 1:
+        {
+            // Corner tetrahedron at the vertex below
+            const int i = below[0];
+            sum.add
+            (
+                p[i],
+                cut(p[i], s[i], p[above[0]], s[above[0]]),
+                cut(p[i], s[i], p[above[1]], s[above[1]]),
+                cut(p[i], s[i], p[above[2]], s[above[2]])
+            );
+            return;
+        }
+        case 3:
+        {
+            // Whole tetrahedron minus the corner at the vertex above
+            const int j = above[0];
+            sum.add(p[0], p[1], p[2], p[3]);
+            sum.add
+            (
+                p[j],
+                cut(p[below[0]], s[below[0]], p[j], s[j]),
+                cut(p[below[1]], s[below[1]], p[j], s[j]),
+                cut(p[below[2]], s[below[2]], p[j], s[j]),
+                -1
+            );
+            return;
+        }
+        default:
+        {
+            // Two below (i1, i2), two above (j1, j2): a wedge with the
+            // triangles A = (i1, cut(i1,j1), cut(i1,j2)) and
+            // B = (i2, cut(i2,j1), cut(i2,j2)). Its three quadrilaterals are
+            // planar (two lie in faces of the tetrahedron, one in the water
+            // plane), so three tetrahedra with consistent diagonals fill it.
+            const int i1 = below[0];
+            const int i2 = below[1];
+            const int j1 = above[0];
+            const int j2 = above[1];
+            const Vec3& A0 = p[i1];
+            const Vec3 A1 = cut(p[i1], s[i1], p[j1], s[j1]);
+            const Vec3 A2 = cut(p[i1], s[i1], p[j2], s[j2]);
+            const Vec3& B0 = p[i2];
+            const Vec3 B1 = cut(p[i2], s[i2], p[j1], s[j1]);
+            const Vec3 B2 = cut(p[i2], s[i2], p[j2], s[j2]);
+            sum.add(A0, A1, A2, B2);
+            sum.add(A0, A1, B1, B2);
+            sum.add(A0, B0, B1, B2);
+            return;
+        }
+    }
+}
+
+} // anonymous namespace
+
+
+SubmergedVolume submergedVolume
+(
+    const ConvexPolyhedron& P,
+    const Mat3& R,
+    const Vec3& x,
+    double level
+)
+{
+    SubmergedVolume result;
+    result.volume = 0;
+    result.centroid = x;
+
+    const std::vector<Vec3>& V = P.vertices();
+    const int nv = static_cast<int>(V.size());
+    if (nv == 0)
+    {
+        return result;
+    }
+
+    // Height above the plane of a body point p: up.p + h0
+    const Vec3 up = R.row(2).transpose();
+    const double h0 = x.z() - level;
+
+    double sMin = std::numeric_limits<double>::max();
+    Vec3 centre = Vec3::Zero();
+    for (int k = 0; k < nv; ++k)
+    {
+        sMin = std::min(sMin, up.dot(V[k]) + h0);
+        centre += V[k];
+    }
+    if (sMin >= 0)
+    {
+        return result;
+    }
+    centre /= nv;
+
+    // Tetrahedra relative to the interior point (round-off scales with the
+    // size of the polyhedron, not with its distance from the origin)
+    VolumeSum sum;
+    Vec3 p[4];
+    double s[4];
+    p[0] = Vec3::Zero();
+    s[0] = up.dot(centre) + h0;
+
+    const int nf = static_cast<int>(P.faces().size());
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        const Vec3& v0 = V[P.faceVertex(f, 0)];
+        p[1] = v0 - centre;
+        s[1] = up.dot(v0) + h0;
+        for (int k = 1; k + 1 < n; ++k)
+        {
+            const Vec3& v1 = V[P.faceVertex(f, k)];
+            const Vec3& v2 = V[P.faceVertex(f, k + 1)];
+            p[2] = v1 - centre;
+            s[2] = up.dot(v1) + h0;
+            p[3] = v2 - centre;
+            s[3] = up.dot(v2) + h0;
+            addClippedTetrahedron(p, s, sum);
+        }
+    }
+
+    if (sum.volume > 0)
+    {
+        result.volume = sum.volume;
+        result.centroid = R*(centre + sum.first/sum.volume) + x;
+    }
+    return result;
+}
+
+
+bool submergedFace
+(
+    const ConvexPolyhedron& P,
+    int f,
+    const Mat3& R,
+    const Vec3& x,
+    double level,
+    SubmergedFace& out
+)
+{
+    const ConvexPolyhedron::Face& face = P.faces()[f];
+    const int n = face.count;
+    if (n + 1 > SubmergedFace::maxVertices)
+    {
+        throw Error
+        (
+            "water clipping: face " + std::to_string(f) + " has "
+          + std::to_string(n) + " vertices, more than the capacity "
+          + std::to_string(SubmergedFace::maxVertices - 1)
+          + " of SubmergedFace::maxVertices - 1"
+        );
+    }
+
+    out.face = f;
+    out.nVertices = 0;
+    out.area = 0;
+
+    const std::vector<Vec3>& V = P.vertices();
+
+    // Sutherland-Hodgman against the half-space z < level (world frame)
+    Vec3 prev = R*V[P.faceVertex(f, n - 1)] + x;
+    double sPrev = prev.z() - level;
+    for (int k = 0; k < n; ++k)
+    {
+        const Vec3 cur = R*V[P.faceVertex(f, k)] + x;
+        const double sCur = cur.z() - level;
+        if (sCur < 0)
+        {
+            if (sPrev >= 0)
+            {
+                out.vertices[out.nVertices++] = cut(cur, sCur, prev, sPrev);
+            }
+            out.vertices[out.nVertices++] = cur;
+        }
+        else if (sPrev < 0)
+        {
+            out.vertices[out.nVertices++] = cut(prev, sPrev, cur, sCur);
+        }
+        prev = cur;
+        sPrev = sCur;
+    }
+
+    if (out.nVertices < 3)
+    {
+        out.nVertices = 0;
+        return false;
+    }
+
+    // Area and centroid by a fan from the first vertex (exact for a planar
+    // polygon)
+    out.normal = R*face.normal;
+    const Vec3& q0 = out.vertices[0];
+    Vec3 first = Vec3::Zero();
+    double area = 0;
+    for (int k = 1; k + 1 < out.nVertices; ++k)
+    {
+        const Vec3& q1 = out.vertices[k];
+        const Vec3& q2 = out.vertices[k + 1];
+        const double a = 0.5*((q1 - q0).cross(q2 - q0)).dot(out.normal);
+        area += a;
+        first += (a/3.0)*(q0 + q1 + q2);
+    }
+    if (!(area > 0))
+    {
+        out.nVertices = 0;
+        return false;
+    }
+    out.area = area;
+    out.centroid = first/area;
+    return true;
+}
+
+
+int triangleSamples
+(
+    const Vec3& a,
+    const Vec3& b,
+    const Vec3& c,
+    int subdivision,
+    Vec3* points,
+    double* areas
+)
+{
+    const int n = 1 << subdivision;
+    const double subArea = 0.5*((b - a).cross(c - a)).norm()/(n*n);
+    const Vec3 e1 = (b - a)/n;
+    const Vec3 e2 = (c - a)/n;
+
+    // Sub-triangles on the barycentric grid of spacing 1/n: the upright
+    // ones (i, j), (i+1, j), (i, j+1) for i + j <= n - 1 and the inverted
+    // ones (i+1, j), (i, j+1), (i+1, j+1) for i + j <= n - 2
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+    {
+        for (int j = 0; i + j < n; ++j)
+        {
+            points[m] = a + (i + 1.0/3.0)*e1 + (j + 1.0/3.0)*e2;
+            areas[m] = subArea;
+            ++m;
+            if (i + j + 2 <= n)
+            {
+                points[m] = a + (i + 2.0/3.0)*e1 + (j + 2.0/3.0)*e2;
+                areas[m] = subArea;
+                ++m;
+            }
+        }
+    }
+    return m;
+}
+
+
+int faceTriangleSamples
+(
+    const SubmergedFace& s,
+    int k,
+    int subdivision,
+    Vec3* points,
+    double* areas
+)
+{
+    const int k1 = (k + 1 == s.nVertices) ? 0 : k + 1;
+    return triangleSamples
+    (
+        s.centroid,
+        s.vertices[k],
+        s.vertices[k1],
+        subdivision,
+        points,
+        areas
+    );
+}
+
+
+int faceSamples
+(
+    const SubmergedFace& s,
+    int subdivision,
+    Vec3* points,
+    double* areas,
+    int capacity
+)
+{
+    const int total = faceSampleCount(s, subdivision);
+    if (total > capacity)
+    {
+        throw Error
+        (
+            "water clipping: face " + std::to_string(s.face) + " needs "
+          + std::to_string(total) + " sample points at subdivision "
+          + std::to_string(subdivision) + ", more than the buffer capacity "
+          + std::to_string(capacity) + "; lower the subdivision",
+            "subdivision"
+        );
+    }
+
+    const int per = samplesPerTriangle(subdivision);
+    for (int k = 0; k < s.nVertices; ++k)
+    {
+        faceTriangleSamples(s, k, subdivision, points + k*per, areas + k*per);
+    }
+    return total;
+}
+
+} // namespace iceDEM

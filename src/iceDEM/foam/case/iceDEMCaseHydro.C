@@ -1,0 +1,133 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+Description
+    Water (buoyancy) and drag of constant/iceDEMProperties: the water
+    sub-dictionary adds the core's Buoyancy model, the drag sub-dictionary
+    the core's Drag model with a uniform current (type empirical) or with the
+    flow velocity made by the solver's factory (type resolved).
+\*---------------------------------------------------------------------------*/
+
+#include "iceDEMCase.H"
+#include "dictionaryChecks.H"
+
+#include "hydro/Buoyancy.H"
+#include "hydro/Drag.H"
+#include "hydro/FlowVelocity.H"
+
+using namespace Foam::iceDEMChecks;
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
+
+void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
+{
+    const bool hasWater = properties_.found("water", keyType::LITERAL);
+    const bool hasDrag = properties_.found("drag", keyType::LITERAL);
+
+    if (!hasWater)
+    {
+        if (hasDrag)
+        {
+            FatalIOErrorInFunction(properties_.subDict("drag"))
+                << "Entry 'drag' needs the sub-dictionary 'water' (density,"
+                << " level) in " << "constant/iceDEMProperties" << nl
+                << exit(FatalIOError);
+        }
+        return;
+    }
+
+    const dictionary& wd = properties_.subDict("water");
+    checkKeywords(wd, {"density", "level"}, "water");
+
+    ::iceDEM::WaterSettings water;
+    water.density = positive(wd, "density", 1025);
+    water.level = wd.getOrDefault<scalar>("level", 0);
+
+    coreCall(wd, "water", [&]{ ::iceDEM::checkWaterSettings(water); });
+    world_->addForceModel(std::make_shared<::iceDEM::Buoyancy>(water));
+    water_ = true;
+
+    if (!hasDrag)
+    {
+        return;
+    }
+
+    const dictionary& dd = properties_.subDict("drag");
+    checkKeywords
+    (
+        dd,
+        {
+            "type", "current", "U", "formCoefficient", "skinCoefficient",
+            "subdivision", "bottomCosine"
+        },
+        "drag"
+    );
+
+    dragType_ =
+        selectName(dd, "type", wordList({"empirical", "resolved"}));
+
+    ::iceDEM::DragSettings drag;
+    drag.formCoefficient = nonNegative(dd, "formCoefficient", 1.0);
+    drag.skinCoefficient = nonNegative(dd, "skinCoefficient", 0.004);
+    drag.subdivision = labelInRange
+    (
+        dd, "subdivision", 0, ::iceDEM::DragSettings::maxSubdivision, 2
+    );
+    drag.bottomCosine =
+        dd.getOrDefault<scalar>("bottomCosine", 0.70710678118654752);
+    if (!(drag.bottomCosine > 0 && drag.bottomCosine <= 1))
+    {
+        FatalIOErrorInFunction(dd)
+            << "Entry 'bottomCosine' is " << drag.bottomCosine
+            << ": it must lie in (0, 1]" << nl
+            << exit(FatalIOError);
+    }
+    coreCall(dd, "drag", [&]{ ::iceDEM::checkDragSettings(drag); });
+
+    std::shared_ptr<const ::iceDEM::FlowVelocity> flow;
+
+    if (dragType_ == "empirical")
+    {
+        if (dd.found("U", keyType::LITERAL))
+        {
+            FatalIOErrorInFunction(dd)
+                << "Entry 'U' belongs to drag type resolved; type empirical"
+                << " takes the uniform 'current'" << nl
+                << exit(FatalIOError);
+        }
+        const vector current = dd.getOrDefault<vector>("current", Zero);
+        flow = std::make_shared<::iceDEM::UniformCurrent>(toVec3(current));
+    }
+    else
+    {
+        if (!resolvedFlow)
+        {
+            FatalIOErrorInFunction(dd)
+                << "Entry 'type': drag type resolved needs the velocity"
+                << " field of a flow solver (iceFloatingFoam); this"
+                << " application has none: use type empirical (uniform"
+                << " 'current')"
+                << nl << exit(FatalIOError);
+        }
+        flow = resolvedFlow(dd);
+        if (!flow)
+        {
+            FatalIOErrorInFunction(dd)
+                << "drag type resolved: the solver made no velocity field"
+                << nl << exit(FatalIOError);
+        }
+    }
+
+    world_->addForceModel
+    (
+        coreCall
+        (
+            dd, "drag",
+            [&]{ return std::make_shared<::iceDEM::Drag>(water, drag, flow); }
+        )
+    );
+}
+
+
+// ************************************************************************* //

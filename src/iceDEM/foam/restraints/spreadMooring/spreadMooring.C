@@ -1,0 +1,462 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    This program is free software: you can redistribute it and/or modify it
+    under the terms of the GNU General Public License as published by the
+    Free Software Foundation, either version 3 of the License, or (at your
+    option) any later version. See <http://www.gnu.org/licenses/>.
+
+\*---------------------------------------------------------------------------*/
+
+#include "spreadMooring.H"
+#include "addToRunTimeSelectionTable.H"
+#include "sixDoFRigidBodyMotion.H"
+#include "mathematicalConstants.H"
+#include "OSspecific.H"
+#include "unitConversion.H"
+
+// * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
+
+namespace Foam
+{
+namespace sixDoFRigidBodyMotionRestraints
+{
+    defineTypeNameAndDebug(spreadMooring, 0);
+
+    addToRunTimeSelectionTable
+    (
+        sixDoFRigidBodyMotionRestraint,
+        spreadMooring,
+        dictionary
+    );
+}
+}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::readLine
+(
+    const dictionary& dict,
+    const label i,
+    const point& anchor,
+    const point& fairlead
+)
+{
+    const scalar L = mag(fairlead - anchor);
+    if (!(L > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Mooring line " << i << " of restraint " << name_ << " in "
+            << dict.name() << ": anchor and fairlead coincide (" << anchor
+            << ")." << nl << exit(FatalIOError);
+    }
+
+    const scalar k = dict.get<scalar>("stiffness");
+    if (!(k > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "Mooring line " << i << " of restraint " << name_ << " in "
+            << dict.name() << ": 'stiffness " << k << "' must be positive."
+            << nl << exit(FatalIOError);
+    }
+
+    const scalar c = dict.lookupOrDefault<scalar>("damping", 0);
+    if (c < 0)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Mooring line " << i << " of restraint " << name_ << " in "
+            << dict.name() << ": 'damping " << c << "' must not be negative."
+            << nl << exit(FatalIOError);
+    }
+
+    const bool hasRest = dict.found("restLength");
+    const bool hasPre = dict.found("pretension");
+    if (hasRest && hasPre)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Mooring line " << i << " of restraint " << name_ << " in "
+            << dict.name() << " has both 'restLength' and 'pretension':"
+            << " give exactly one." << nl << exit(FatalIOError);
+    }
+    if (!hasRest && !hasPre)
+    {
+        FatalIOErrorInFunction(dict)
+            << "Mooring line " << i << " of restraint " << name_ << " in "
+            << dict.name() << " has no length: give 'restLength' [m] or"
+            << " 'pretension' [N]." << nl << exit(FatalIOError);
+    }
+
+    scalar L0 = 0;
+    if (hasRest)
+    {
+        L0 = dict.get<scalar>("restLength");
+        if (!(L0 > 0))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Mooring line " << i << " of restraint " << name_ << " in "
+                << dict.name() << ": 'restLength " << L0
+                << "' must be positive." << nl << exit(FatalIOError);
+        }
+    }
+    else
+    {
+        const scalar T0 = dict.get<scalar>("pretension");
+        L0 = L - T0/k;
+        if (T0 < 0 || !(L0 > 0))
+        {
+            FatalIOErrorInFunction(dict)
+                << "Mooring line " << i << " of restraint " << name_ << " in "
+                << dict.name() << ": 'pretension " << T0 << "' must be >= 0"
+                << " and less than stiffness x length (" << k*L << ")."
+                << nl << exit(FatalIOError);
+        }
+    }
+
+    anchors_[i] = anchor;
+    fairleads_[i] = fairlead;
+    stiffness_[i] = k;
+    restLength_[i] = L0;
+    damping_[i] = c;
+}
+
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::open
+(
+    const Time& runTime
+) const
+{
+    const fileName dir
+    (
+        runTime.globalPath()/"postProcessing"/name_
+       /runTime.timeName(runTime.startTime().value())
+    );
+    mkDir(dir);
+
+    // A restraint re-read during the run must not truncate the file
+    fileName file(dir/"tensions.dat");
+    if (isFile(file))
+    {
+        file = dir/("tensions_" + runTime.timeName() + ".dat");
+    }
+
+    file_.reset(new OFstream(file));
+    OFstream& os = file_();
+    os.precision(10);
+    os  << "# Mooring line tensions [N] of restraint " << name_ << nl
+        << "# line: anchor fairlead(initial pose) stiffness restLength" << nl;
+    forAll(anchors_, i)
+    {
+        os  << "#   " << i << ' ' << anchors_[i] << ' ' << fairleads_[i] << ' '
+            << stiffness_[i] << ' ' << restLength_[i] << nl;
+    }
+    os  << "# time";
+    forAll(anchors_, i)
+    {
+        os  << " T" << i;
+    }
+    os  << endl;
+}
+
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::flush() const
+{
+    if (pendingIndex_ < 0 || !file_.valid())
+    {
+        return;
+    }
+    OFstream& os = file_();
+    os  << pendingTime_;
+    forAll(pending_, i)
+    {
+        os  << ' ' << pending_[i];
+    }
+    os  << endl;
+    pendingIndex_ = -1;
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::spreadMooring
+(
+    const word& name,
+    const dictionary& sDoFRBMRDict
+)
+:
+    sixDoFRigidBodyMotionRestraint(name, sDoFRBMRDict),
+    anchors_(),
+    fairleads_(),
+    stiffness_(),
+    restLength_(),
+    damping_(),
+    file_(),
+    pending_(),
+    pendingTime_(0),
+    pendingIndex_(-1),
+    reported_(false)
+{
+    read(sDoFRBMRDict);
+}
+
+
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::spreadMooring
+(
+    const spreadMooring& sm
+)
+:
+    sixDoFRigidBodyMotionRestraint(sm),
+    anchors_(sm.anchors_),
+    fairleads_(sm.fairleads_),
+    stiffness_(sm.stiffness_),
+    restLength_(sm.restLength_),
+    damping_(sm.damping_),
+    file_(),
+    pending_(),
+    pendingTime_(0),
+    pendingIndex_(-1),
+    reported_(sm.reported_)
+{}
+
+
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::~spreadMooring()
+{
+    flush();
+}
+
+
+// * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * * //
+
+Foam::tmp<Foam::scalarField>
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
+(
+    const sixDoFRigidBodyMotion& motion
+) const
+{
+    tmp<scalarField> tT(new scalarField(size(), Zero));
+    scalarField& T = tT.ref();
+
+    forAll(anchors_, i)
+    {
+        const point f = motion.transform(fairleads_[i]);
+        const vector r = f - anchors_[i];
+        const scalar L = mag(r);
+        const vector e = r/(L + VSMALL);
+        T[i] = max
+        (
+            scalar(0),
+            stiffness_[i]*(L - restLength_[i])
+          + damping_[i]*(e & motion.velocity(f))
+        );
+    }
+    return tT;
+}
+
+
+Foam::tensor
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
+(
+    const sixDoFRigidBodyMotion& motion
+) const
+{
+    tensor K(Zero);
+    forAll(anchors_, i)
+    {
+        const point f = motion.transform(fairleads_[i]);
+        const vector r = f - anchors_[i];
+        const scalar L = mag(r);
+        const vector e = r/(L + VSMALL);
+        const scalar T = stiffness_[i]*(L - restLength_[i]);
+        if (T > 0)
+        {
+            K += stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
+        }
+    }
+    return K;
+}
+
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
+(
+    const sixDoFRigidBodyMotion& motion,
+    vector& restraintPosition,
+    vector& restraintForce,
+    vector& restraintMoment
+) const
+{
+    const Time& runTime = motion.time();
+
+    if (!reported_)
+    {
+        reported_ = true;
+        const tensor K = stiffnessMatrix(motion);
+        Info<< "Restraint " << name_ << " (spreadMooring): " << size()
+            << " lines, linearised stiffness [N/m] Kxx " << K.xx()
+            << " Kyy " << K.yy() << " Kzz " << K.zz() << nl
+            << "    surge period without added mass 2 pi sqrt(M/Kxx) = "
+            << constant::mathematical::twoPi
+              *Foam::sqrt(motion.mass()/max(K.xx(), VSMALL))
+            << " s" << endl;
+    }
+
+    const scalarField T(tensions(motion));
+
+    const point& CofR = motion.centreOfRotation();
+    restraintPosition = CofR;
+    restraintForce = Zero;
+    restraintMoment = Zero;
+
+    forAll(anchors_, i)
+    {
+        const point f = motion.transform(fairleads_[i]);
+        const vector r = f - anchors_[i];
+        const vector F = -T[i]*r/(mag(r) + VSMALL);
+        restraintForce += F;
+        restraintMoment += (f - CofR) ^ F;
+    }
+
+    // Output: one row per time step, the last evaluation of the step
+    if (!file_.valid())
+    {
+        open(runTime);
+    }
+    if (pendingIndex_ >= 0 && pendingIndex_ != runTime.timeIndex())
+    {
+        flush();
+    }
+    pending_ = T;
+    pendingTime_ = runTime.value();
+    pendingIndex_ = runTime.timeIndex();
+
+    if (motion.report())
+    {
+        Info<< " mooring force " << restraintForce
+            << " moment " << restraintMoment
+            << " max tension " << max(T) << endl;
+    }
+}
+
+
+bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
+(
+    const dictionary& sDoFRBMRDict
+)
+{
+    sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
+
+    const bool hasLines = sDoFRBMRDict.found("lines");
+    const bool hasSpread = sDoFRBMRDict.found("spread");
+    if (hasLines == hasSpread)
+    {
+        FatalIOErrorInFunction(sDoFRBMRDict)
+            << "Restraint " << name_ << " (spreadMooring) in "
+            << sDoFRBMRDict.name() << " needs exactly one of 'lines'"
+            << " (a list of line dictionaries) or 'spread' (equally spaced"
+            << " lines)." << nl << exit(FatalIOError);
+    }
+
+    if (hasLines)
+    {
+        const PtrList<dictionary> lines
+        (
+            sDoFRBMRDict.lookup("lines")
+        );
+        if (lines.empty())
+        {
+            FatalIOErrorInFunction(sDoFRBMRDict)
+                << "Restraint " << name_ << " in " << sDoFRBMRDict.name()
+                << ": 'lines' is empty." << nl << exit(FatalIOError);
+        }
+        const label n = lines.size();
+        anchors_.setSize(n);
+        fairleads_.setSize(n);
+        stiffness_.setSize(n);
+        restLength_.setSize(n);
+        damping_.setSize(n);
+        forAll(lines, i)
+        {
+            dictionary lineDict(lines[i]);
+            lineDict.name() = sDoFRBMRDict.name() + ".lines." + Foam::name(i);
+            readLine
+            (
+                lineDict,
+                i,
+                lineDict.get<point>("anchor"),
+                lineDict.get<point>("fairlead")
+            );
+        }
+    }
+    else
+    {
+        const dictionary& dict = sDoFRBMRDict.subDict("spread");
+        const label n = dict.get<label>("nLines");
+        if (n < 1)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Entry 'nLines " << n << "' in " << dict.name()
+                << " must be at least 1." << nl << exit(FatalIOError);
+        }
+        const point centre(dict.lookupOrDefault<point>("centre", Zero));
+        const scalar phi0 =
+            degToRad(dict.lookupOrDefault<scalar>("startAngle", 0));
+        const scalar Ra = dict.get<scalar>("anchorRadius");
+        const scalar za = dict.get<scalar>("anchorZ");
+        const scalar Rf = dict.get<scalar>("fairleadRadius");
+        const scalar zf = dict.get<scalar>("fairleadZ");
+        if (!(Ra > 0) || Rf < 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "In " << dict.name() << ": 'anchorRadius' must be"
+                << " positive and 'fairleadRadius' not negative." << nl
+                << exit(FatalIOError);
+        }
+
+        anchors_.setSize(n);
+        fairleads_.setSize(n);
+        stiffness_.setSize(n);
+        restLength_.setSize(n);
+        damping_.setSize(n);
+        for (label i = 0; i < n; ++i)
+        {
+            const scalar phi =
+                phi0 + constant::mathematical::twoPi*scalar(i)/scalar(n);
+            const vector er(Foam::cos(phi), Foam::sin(phi), 0);
+            readLine
+            (
+                dict,
+                i,
+                point(centre.x(), centre.y(), za) + Ra*er,
+                point(centre.x(), centre.y(), zf) + Rf*er
+            );
+        }
+    }
+
+    pending_.setSize(anchors_.size(), Zero);
+    return true;
+}
+
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::write
+(
+    Ostream& os
+) const
+{
+    os.writeKeyword("lines") << nl
+        << indent << token::BEGIN_LIST << incrIndent << nl;
+    forAll(anchors_, i)
+    {
+        os  << indent << token::BEGIN_BLOCK << incrIndent << nl;
+        os.writeEntry("anchor", anchors_[i]);
+        os.writeEntry("fairlead", fairleads_[i]);
+        os.writeEntry("stiffness", stiffness_[i]);
+        os.writeEntry("restLength", restLength_[i]);
+        os.writeEntry("damping", damping_[i]);
+        os  << decrIndent << indent << token::END_BLOCK << nl;
+    }
+    os  << decrIndent << indent << token::END_LIST << token::END_STATEMENT
+        << nl;
+}
+
+
+// ************************************************************************* //

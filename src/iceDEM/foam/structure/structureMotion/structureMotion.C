@@ -1,0 +1,129 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    This program is free software: you can redistribute it and/or modify it
+    under the terms of the GNU General Public License as published by the
+    Free Software Foundation, either version 3 of the License, or (at your
+    option) any later version. See <http://www.gnu.org/licenses/>.
+
+\*---------------------------------------------------------------------------*/
+
+#include "structureMotion.H"
+#include "uniformDimensionedFields.H"
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+const Foam::dictionary& Foam::structureMotion::coeffs() const
+{
+    const word solver(dict_.get<word>("motionSolver"));
+    if (solver != "sixDoFRigidBodyMotion")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "Entry 'motionSolver " << solver << "' in " << dict_.name()
+            << ": the structure motion needs 'motionSolver"
+            << " sixDoFRigidBodyMotion'." << nl << exit(FatalIOError);
+    }
+    return dict_.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * * //
+
+Foam::structureMotion::structureMotion(const Time& runTime)
+:
+    runTime_(runTime),
+    dict_
+    (
+        IOobject
+        (
+            "dynamicMeshDict",
+            runTime.constant(),
+            runTime,
+            IOobject::MUST_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    ),
+    motion_(),
+    curTimeIndex_(-1)
+{
+    IOobject stateIO
+    (
+        "sixDoFRigidBodyMotionState",
+        runTime.timeName(),
+        "uniform",
+        runTime,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+
+    if (stateIO.typeHeaderOk<IOdictionary>(true))
+    {
+        Info<< "Reading the structure state from "
+            << stateIO.objectPath() << endl;
+        const IOdictionary state(stateIO);
+        motion_.reset(new sixDoFRigidBodyMotion(coeffs(), state, runTime));
+    }
+    else
+    {
+        motion_.reset(new sixDoFRigidBodyMotion(coeffs(), coeffs(), runTime));
+    }
+}
+
+
+// * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * * //
+
+void Foam::structureMotion::step(const vector& force, const vector& moment)
+{
+    bool firstIter = false;
+    if (curTimeIndex_ != runTime_.timeIndex())
+    {
+        motion_->newTime();
+        curTimeIndex_ = runTime_.timeIndex();
+        firstIter = true;
+    }
+
+    const auto* gPtr = runTime_.findObject<uniformDimensionedVectorField>("g");
+    if (!gPtr)
+    {
+        FatalErrorInFunction
+            << "No gravity field 'g' registered on the Time database"
+            << " (constant/g)." << nl << exit(FatalError);
+    }
+    const vector g = gPtr->value();
+    const scalar m = motion_->mass();
+
+    motion_->update
+    (
+        firstIter,
+        force + m*g,
+        moment + m*(motion_->momentArm() ^ g),
+        runTime_.deltaTValue(),
+        runTime_.deltaT0Value()
+    );
+}
+
+
+void Foam::structureMotion::write() const
+{
+    IOdictionary state
+    (
+        IOobject
+        (
+            "sixDoFRigidBodyMotionState",
+            runTime_.timeName(),
+            "uniform",
+            runTime_,
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    motion_->state().write(state);
+    state.regIOobject::write();
+}
+
+
+// ************************************************************************* //

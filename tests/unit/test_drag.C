@@ -1,0 +1,497 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+Description
+    Drag (hydro/Drag.H) on box-shaped floes built as in the case files,
+    against analytic results (method.md 4 and 7.6):
+      - the force and moment of a uniform relative flow (exact: the sample
+        points integrate a uniform load exactly);
+      - a floe moving through still water slows down as u0/(1 + k u0 t),
+        k = 1/2 rho_w (C_f A_side + C_s A_bottom)/m;
+      - a floe released at rest in a uniform current reaches the current:
+        U - u = U/(1 + k U t);
+      - a spinning floe spins down as w0/(1 + (c/I) w0 t), c the moment
+        coefficient of the facet model, compared with the continuous law
+        c = rho_w C_f d L^4/32 + 1/2 rho_w C_s K (L/2)^5,
+        K = int over [-1,1]^2 of (x^2 + y^2)^(3/2);
+      - settings errors name the entry; results do not depend on the
+        number of threads.
+    The floes float (gravity and buoyancy on) unless said otherwise.
+\*---------------------------------------------------------------------------*/
+
+#include "World.H"
+#include "hydro/Buoyancy.H"
+#include "hydro/Drag.H"
+#include "hydro/FlowVelocity.H"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+using namespace iceDEM;
+
+namespace
+{
+
+constexpr double rhoIce = 900;
+constexpr double rhoWater = 1025;
+constexpr double g = 9.81;
+constexpr double radius = 0.05;
+
+//- World with square-ish box floes Lx x Ly x h (true size) with their
+//  bottom at zb. No contacts happen: a soft material keeps the time-step
+//  check (Hertz contact time) out of the way of long steps.
+struct DragWorld
+{
+    std::unique_ptr<World> world;
+    int ice = -1;
+
+    DragWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
+    {
+        WorldSettings ws;
+        ws.timeStep = dt;
+        ws.gravity = gravity;
+        world = std::make_unique<World>(ws);
+        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
+    }
+
+    int addFloe
+    (
+        double Lx,
+        double Ly,
+        double h,
+        double zb,
+        const Vec3& centre = Vec3::Zero(),
+        const Vec3& v = Vec3::Zero(),
+        const Vec3& omega = Vec3::Zero()
+    )
+    {
+        const double a = 0.5*Lx - radius;
+        const double b = 0.5*Ly - radius;
+        const int shape = world->addShape
+        (
+            DilatedShape
+            (
+                ConvexPolyhedron::prism
+                (
+                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
+                    zb + radius,
+                    h - 2*radius
+                ),
+                radius
+            )
+        );
+        return world->addBody(shape, ice, centre, Quat::Identity(), v, omega);
+    }
+
+    void addWater(const DragSettings& ds, const Vec3& current)
+    {
+        const WaterSettings water{rhoWater, 0};
+        world->addForceModel(std::make_shared<Buoyancy>(water));
+        world->addForceModel
+        (
+            std::make_shared<Drag>
+            (
+                water, ds, std::make_shared<UniformCurrent>(current)
+            )
+        );
+    }
+
+    const Body& body(int i) const { return world->bodies()[i]; }
+};
+
+//- Expect an Error naming 'entry' from f()
+template<class F>
+void expectError(F f, const std::string& entry)
+{
+    try
+    {
+        f();
+        ADD_FAILURE() << "no Error (entry " << entry << ")";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), entry) << e.what();
+    }
+}
+
+//- One OpenMP thread for the long single-floe runs: with one body there
+//  is nothing to share, and on a busy machine the barriers of a second
+//  thread would dominate the run time (thread independence is tested in
+//  Drag.independentOfThreadCount)
+struct SingleThread
+{
+    int saved;
+    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
+    ~SingleThread() { omp_set_num_threads(saved); }
+};
+
+} // anonymous namespace
+
+
+TEST(Drag, settingsErrorsNameTheEntry)
+{
+    const WaterSettings w;
+    const auto flow = std::make_shared<UniformCurrent>(Vec3(0.3, 0, 0));
+
+    DragSettings s;
+    s.formCoefficient = -1;
+    expectError([&]{ Drag d(w, s, flow); }, "formCoefficient");
+
+    s = DragSettings();
+    s.skinCoefficient = -0.004;
+    expectError([&]{ Drag d(w, s, flow); }, "skinCoefficient");
+
+    s = DragSettings();
+    s.subdivision = -1;
+    expectError([&]{ Drag d(w, s, flow); }, "subdivision");
+    s.subdivision = DragSettings::maxSubdivision + 1;
+    expectError([&]{ Drag d(w, s, flow); }, "subdivision");
+
+    s = DragSettings();
+    s.bottomCosine = 0;
+    expectError([&]{ Drag d(w, s, flow); }, "bottomCosine");
+
+    expectError
+    (
+        [&]{ Drag d(WaterSettings{-1, 0}, DragSettings(), flow); },
+        "density"
+    );
+    expectError([&]{ Drag d(w, DragSettings(), nullptr); }, "type");
+    expectError
+    (
+        [&]{ UniformCurrent u(Vec3(std::nan(""), 0, 0)); },
+        "current"
+    );
+
+    // Documented defaults
+    EXPECT_EQ(DragSettings().formCoefficient, 1.0);
+    EXPECT_EQ(DragSettings().skinCoefficient, 0.004);
+    EXPECT_EQ(DragSettings().subdivision, 2);
+    EXPECT_NO_THROW(Drag(w, DragSettings(), flow));
+}
+
+
+TEST(Drag, uniformFlowForceAndMoment)
+{
+    // 3 (x) by 2 (y) by 1 floe, bottom at z = -0.6, held in a current:
+    // every sample point sees the same relative velocity, so the sums are
+    // exact: the form drag on each leading side acts at the centroid of
+    // its wet part, the skin drag at the centre of the bottom.
+    const double Lx = 3, Ly = 2, zb = -0.6;
+    const double zG = zb + 0.5;
+    const Vec3 U(0.3, -0.2, 0);
+    DragSettings ds;
+    ds.formCoefficient = 0.8;
+    ds.skinCoefficient = 0.01;
+
+    for (int sub : {0, 2, 4})
+    {
+        ds.subdivision = sub;
+        for (bool moving : {false, true})
+        {
+            // The same relative velocity: a floe at rest in the current U,
+            // or a floe moving at -U through still water
+            DragWorld dw(1e-3, Vec3::Zero());
+            dw.addFloe(Lx, Ly, 1, zb, Vec3::Zero(), moving ? Vec3(-U) : Vec3::Zero());
+            Drag drag
+            (
+                WaterSettings{rhoWater, 0}, ds,
+                std::make_shared<UniformCurrent>(moving ? Vec3::Zero() : U)
+            );
+            Vec3 F, M;
+            drag.bodyDrag(*dw.world, 0, F, M);
+
+            const double h2 = 0.5*rhoWater;
+            const double depth = -zb;
+            // Leading sides: -x (area Ly depth) and +y (area Lx depth)
+            const Vec3 Fx(h2*ds.formCoefficient*Ly*depth*U.x()*U.x(), 0, 0);
+            const Vec3 Fy(0, -h2*ds.formCoefficient*Lx*depth*U.y()*U.y(), 0);
+            const Vec3 Fs = h2*ds.skinCoefficient*Lx*Ly*U.norm()*U;
+            const Vec3 rx(-0.5*Lx, 0, 0.5*zb - zG);
+            const Vec3 ry(0, 0.5*Ly, 0.5*zb - zG);
+            const Vec3 rs(0, 0, zb - zG);
+            const Vec3 Fe = Fx + Fy + Fs;
+            const Vec3 Me = rx.cross(Fx) + ry.cross(Fy) + rs.cross(Fs);
+
+            SCOPED_TRACE("subdivision " + std::to_string(sub)
+                + (moving ? ", moving floe" : ", current"));
+            EXPECT_NEAR((F - Fe).norm(), 0, 1e-12*Fe.norm());
+            EXPECT_NEAR((M - Me).norm(), 0, 1e-12*Me.norm());
+        }
+    }
+}
+
+
+TEST(Drag, pureHeaveHasNoDrag)
+{
+    // Side normals are horizontal and the bottom only feels tangential
+    // (skin) drag: drag does not damp heave
+    DragWorld dw(1e-3, Vec3::Zero());
+    dw.addFloe(3, 2, 1, -0.6, Vec3::Zero(), Vec3(0, 0, -0.5));
+    Drag drag
+    (
+        WaterSettings{}, DragSettings(),
+        std::make_shared<UniformCurrent>(Vec3::Zero())
+    );
+    Vec3 F, M;
+    drag.bodyDrag(*dw.world, 0, F, M);
+    EXPECT_EQ(F.norm(), 0.0);
+    EXPECT_EQ(M.norm(), 0.0);
+}
+
+
+TEST(Drag, decayInStillWater)
+{
+    const SingleThread oneThread;
+
+    // 10 x 10 x 1 floe at its draft d moving at u0 through still water:
+    //   du/dt = -k u^2,  k = 1/2 rho_w (C_f L d + C_s L^2)/m
+    const double L = 10, h = 1;
+    const double d = rhoIce/rhoWater*h;
+    const double u0 = 1.0;
+    const DragSettings ds;
+    DragWorld dw(5e-3);
+    dw.addFloe(L, L, h, -d, Vec3::Zero(), Vec3(u0, 0, 0));
+    dw.addWater(ds, Vec3::Zero());
+
+    const double m = dw.body(0).mass;
+    ASSERT_NEAR(m, rhoIce*L*L*h, 1e-9*m);
+    const double k =
+        0.5*rhoWater*(ds.formCoefficient*L*d + ds.skinCoefficient*L*L)/m;
+
+    double worst = 0;
+    for (int s = 1; s <= 80; ++s)
+    {
+        dw.world->advanceTo(s*1.0);
+        const double t = dw.world->time();
+        const double expected = u0/(1 + k*u0*t);
+        worst = std::max(worst, std::abs(dw.body(0).v.x()/expected - 1));
+    }
+    std::cout << "decay: k u0 t_end = " << k*u0*dw.world->time()
+              << ", largest relative deviation from u0/(1 + k u0 t): "
+              << worst << std::endl;
+    EXPECT_LT(worst, 0.02);
+    EXPECT_LT(std::abs(dw.body(0).v.y()), 1e-9);
+}
+
+
+TEST(Drag, reachesTheCurrent)
+{
+    const SingleThread oneThread;
+
+    // 4 x 4 x 1 floe released at rest in a current U along x:
+    //   U - u = U/(1 + k U t),  k = 1/2 rho_w (C_f L d + C_s L^2)/m
+    const double L = 4, h = 1;
+    const double d = rhoIce/rhoWater*h;
+    const Vec3 U(0.3, 0, 0);
+    const DragSettings ds;
+    DragWorld dw(0.02);
+    dw.addFloe(L, L, h, -d);
+    dw.addWater(ds, U);
+
+    const double m = dw.body(0).mass;
+    const double k =
+        0.5*rhoWater*(ds.formCoefficient*L*d + ds.skinCoefficient*L*L)/m;
+    const double Un = U.norm();
+
+    double worst = 0;
+    const double tEnd = 200/(k*Un);     // U - u = U/201 analytically
+    const int nOut = 100;
+    for (int s = 1; s <= nOut; ++s)
+    {
+        dw.world->advanceTo(s*tEnd/nOut);
+        const double t = dw.world->time();
+        const double expected = Un - Un/(1 + k*Un*t);
+        worst = std::max(worst, std::abs(dw.body(0).v.x() - expected)/expected);
+    }
+    const double lag = (dw.body(0).v - U).norm()/Un;
+    std::cout << "current: t_end " << tEnd << " s, relative lag at the end "
+              << lag << " (analytic " << 1.0/201 << "), largest relative "
+              << "deviation from U kUt/(1 + kUt): " << worst << std::endl;
+    EXPECT_LT(worst, 0.02);
+    EXPECT_LT(lag, 0.01);
+}
+
+
+TEST(Drag, obliqueCurrent)
+{
+    const SingleThread oneThread;
+
+    // Current at an angle to the sides of a 4 x 4 x 1 floe. With w = U - u
+    // the lag, the form drag acts on the -x and +y sides separately and
+    // the skin drag along w:
+    //   dw/dt = -k_f (w_x |w_x|, w_y |w_y|) - k_s |w| w,
+    //   k_f = 1/2 rho_w C_f L d/m,  k_s = 1/2 rho_w C_s L^2/m
+    // (no yaw moment: each force acts on the floe's centre line). The lag
+    // is compared with this law integrated by RK4.
+    const double L = 4, h = 1;
+    const double d = rhoIce/rhoWater*h;
+    const Vec3 U(0.2, -0.25, 0);
+    const DragSettings ds;
+    DragWorld dw(0.02);
+    dw.addFloe(L, L, h, -d);
+    dw.addWater(ds, U);
+
+    const double m = dw.body(0).mass;
+    const double kf = 0.5*rhoWater*ds.formCoefficient*L*d/m;
+    const double ks = 0.5*rhoWater*ds.skinCoefficient*L*L/m;
+    auto rate = [&](const Vec2& w) -> Vec2
+    {
+        return -kf*Vec2(w.x()*std::abs(w.x()), w.y()*std::abs(w.y()))
+              - ks*w.norm()*w;
+    };
+
+    Vec2 w = U.head<2>();
+    double tRef = 0;
+    const double dtRef = 0.1;
+    double worst = 0;
+    double lag = 1;
+    for (int s = 1; s <= 30; ++s)
+    {
+        const double t = s*50.0;
+        while (tRef < t - 1e-9)
+        {
+            const Vec2 k1 = rate(w);
+            const Vec2 k2 = rate(w + 0.5*dtRef*k1);
+            const Vec2 k3 = rate(w + 0.5*dtRef*k2);
+            const Vec2 k4 = rate(w + dtRef*k3);
+            w += dtRef/6*(k1 + 2*k2 + 2*k3 + k4);
+            tRef += dtRef;
+        }
+        dw.world->advanceTo(t);
+        const Vec3 lagVec = U - dw.body(0).v;
+        worst = std::max
+        (
+            worst, (lagVec.head<2>() - w).norm()/w.norm()
+        );
+        const double newLag = lagVec.norm()/U.norm();
+        EXPECT_LT(newLag, lag);
+        lag = newLag;
+    }
+    std::cout << "oblique current: relative lag after "
+              << dw.world->time() << " s: " << lag << " (law "
+              << w.norm()/U.norm() << "), largest relative deviation of "
+              << "the lag from the law: " << worst << std::endl;
+    EXPECT_LT(worst, 0.02);
+    EXPECT_LT(std::abs(dw.body(0).omega().z()), 1e-6);
+}
+
+
+TEST(Drag, spinDown)
+{
+    const SingleThread oneThread;
+
+    // 4 x 4 x 1 floe at its draft spinning at w0 about z in still water.
+    // Continuous law: form drag on the leading half of each side and skin
+    // drag on the bottom give M_z = -c w|w| with
+    //   c = rho_w C_f d L^4/32 + 1/2 rho_w C_s K (L/2)^5,
+    //   K = 8/5 [ sec^3 tan/4 + 3/8 (sec tan + ln(sec + tan)) ] at pi/4.
+    // The facet model has the same form M_z = -c_m w|w| (the sampled
+    // velocities scale with w), so w = w0/(1 + (c_m/I) w0 t), I = m L^2/6;
+    // c_m tends to c as the sampling is refined.
+    const double L = 4, h = 1;
+    const double d = rhoIce/rhoWater*h;
+    const double w0 = 0.5;
+    DragSettings ds;
+
+    const double s2 = std::sqrt(2.0);
+    const double K =
+        1.6*(2*s2/4 + 0.375*(s2 + std::log(1 + s2)));
+    const double c =
+        rhoWater*ds.formCoefficient*d*std::pow(L, 4)/32
+      + 0.5*rhoWater*ds.skinCoefficient*K*std::pow(0.5*L, 5);
+
+    // Moment coefficient of the facet model per subdivision
+    std::vector<double> cm;
+    for (int sub = 0; sub <= DragSettings::maxSubdivision; ++sub)
+    {
+        ds.subdivision = sub;
+        DragWorld dw(1e-3, Vec3::Zero());
+        dw.addFloe(L, L, h, -d, Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, w0));
+        Drag drag
+        (
+            WaterSettings{rhoWater, 0}, ds,
+            std::make_shared<UniformCurrent>(Vec3::Zero())
+        );
+        Vec3 F, M;
+        drag.bodyDrag(*dw.world, 0, F, M);
+        EXPECT_NEAR(F.norm(), 0, 1e-12*c*w0*w0/L);
+        EXPECT_NEAR(M.head<2>().norm(), 0, 1e-12*c*w0*w0);
+        cm.push_back(-M.z()/(w0*w0));
+        std::cout << "spin-down: subdivision " << sub << ": c_m/c = "
+                  << cm.back()/c << std::endl;
+    }
+    // Converges to the continuous law: the error falls with refinement
+    for (std::size_t s = 1; s < cm.size(); ++s)
+    {
+        EXPECT_LT(std::abs(cm[s]/c - 1), std::abs(cm[s - 1]/c - 1));
+    }
+    EXPECT_NEAR(cm.back()/c, 1, 0.01);
+
+    // Time history at the default subdivision
+    ds = DragSettings();
+    DragWorld dw(5e-3);
+    dw.addFloe(L, L, h, -d, Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, w0));
+    dw.addWater(ds, Vec3::Zero());
+    const double I = dw.body(0).mass*L*L/6;
+    const double cDefault = cm[ds.subdivision];
+
+    double worst = 0;
+    for (int s = 1; s <= 60; ++s)
+    {
+        dw.world->advanceTo(s*1.0);
+        const double t = dw.world->time();
+        const double expected = w0/(1 + cDefault/I*w0*t);
+        worst = std::max
+        (
+            worst, std::abs(dw.body(0).omega().z()/expected - 1)
+        );
+    }
+    std::cout << "spin-down: (c_m/I) w0 t_end = "
+              << cDefault/I*w0*dw.world->time()
+              << ", largest relative deviation from w0/(1 + (c_m/I) w0 t): "
+              << worst << std::endl;
+    EXPECT_LT(worst, 0.02);
+    EXPECT_LT(dw.body(0).v.norm(), 1e-6);
+}
+
+
+TEST(Drag, independentOfThreadCount)
+{
+    // Several floes drifting and spinning in a current: the same states
+    // with one thread and with two
+    auto run = [](int threads)
+    {
+        omp_set_num_threads(threads);
+        DragWorld dw(5e-3);
+        for (int k = 0; k < 5; ++k)
+        {
+            dw.addFloe
+            (
+                3 + 0.5*k, 2 + 0.3*k, 1, -0.8,
+                Vec3(20.0*k, 0, 0), Vec3(0.1*k, 0, 0), Vec3(0, 0, 0.1)
+            );
+        }
+        dw.addWater(DragSettings(), Vec3(0.3, 0.1, 0));
+        dw.world->advanceTo(2);
+        std::vector<Body> bodies = dw.world->bodies();
+        return bodies;
+    };
+    const int saved = omp_get_max_threads();
+    const std::vector<Body> a = run(1);
+    const std::vector<Body> b = run(2);
+    omp_set_num_threads(saved);
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+        EXPECT_EQ(a[i].x, b[i].x);
+        EXPECT_EQ(a[i].v, b[i].v);
+        EXPECT_EQ(a[i].L, b[i].L);
+        EXPECT_EQ(a[i].q.coeffs(), b[i].q.coeffs());
+    }
+}

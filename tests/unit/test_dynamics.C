@@ -1,0 +1,338 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM tests: conservation, friction, rigid-body rotation, and the
+    invariants (thread count, restart).
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "testWorlds.H"
+
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <random>
+
+using namespace iceDEM;
+using namespace iceDEM::test;
+
+namespace
+{
+
+//- Six walls around the box [-L, L]^3
+void addClosedBox(World& w, double L, int mat)
+{
+    const Vec3 dirs[6] =
+    {
+        Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY(), Vec3::UnitZ(), -Vec3::UnitZ()
+    };
+    for (int k = 0; k < 6; ++k)
+    {
+        Wall wall;
+        wall.name = "wall" + std::to_string(k);
+        wall.point = -L*dirs[k];
+        wall.normal = dirs[k];
+        wall.material = mat;
+        w.addWall(wall);
+    }
+}
+
+double totalEnergy(const World& w)
+{
+    const Energies e = w.energies();
+    return e.kinetic + e.gravitational + e.elastic;
+}
+
+} // anonymous namespace
+
+
+TEST(energy, tumblingCubesInAClosedBoxConserveEnergy)
+{
+    // e = 1, mu = 0: only conservative forces. Every feature pair occurs:
+    // corners, edges and faces on the walls, and cube-cube impacts.
+    WorldSettings s;
+    s.timeStep = 2e-4;
+    s.gravity = Vec3::Zero();
+    World w(s);
+    const int ice_ = w.addMaterial(ice(1e9));
+    const int wallMat = w.addMaterial(steel());
+    w.setPairProperties(ice_, ice_, PairProperties{0.0, 1.0});
+    w.setPairProperties(ice_, wallMat, PairProperties{0.0, 1.0});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(0.5, 0.4, 0.3)), 0.05));
+    addClosedBox(w, 2.0, wallMat);
+    w.addBody(cube, ice_, Vec3(-0.8, 0.1, 0.2), Quat(Eigen::AngleAxisd(0.3, Vec3(1, 2, 0).normalized())),
+              Vec3(3.0, 1.7, -2.2), Vec3(2, -3, 1));
+    w.addBody(cube, ice_, Vec3(0.9, -0.2, -0.4), Quat(Eigen::AngleAxisd(1.1, Vec3(0, 1, 1).normalized())),
+              Vec3(-2.1, 2.6, 1.5), Vec3(-1, 2, 4));
+    w.initialise();
+    const double E0 = totalEnergy(w);
+
+    int impacts = 0;
+    bool inContact = false;
+    double maxDrift = 0;
+    while (w.time() < 40 && impacts < 150)
+    {
+        w.step();
+        const bool c = w.contactCount() > 0;
+        if (c && !inContact) ++impacts;
+        inContact = c;
+        maxDrift = std::max(maxDrift, std::abs(totalEnergy(w) - E0)/E0);
+    }
+    EXPECT_GE(impacts, 100);
+    EXPECT_LT(maxDrift, 5e-3) << "impacts " << impacts;
+}
+
+
+TEST(friction, restingCubeHasTheStaticOverlapOfFourVertexContacts)
+{
+    WorldSettings s;
+    s.timeStep = 2e-5;
+    World w(s);
+    const int ice_ = w.addMaterial(ice(1e9));
+    const int wallMat = w.addMaterial(steel());
+    w.setPairProperties(ice_, wallMat, PairProperties{0.3, 0.3});
+    const double r = 0.05, h = 0.5;
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    Wall floor;
+    floor.name = "floor";
+    floor.material = wallMat;
+    w.addWall(floor);
+    w.addBody(cube, ice_, Vec3(0, 0, h + r + 1e-3));
+    w.initialise();
+    w.advanceTo(1.0);
+
+    const Body& b = w.bodies()[0];
+    const PairCoefficients c = PairCoefficients::make(ice(1e9), steel(), PairProperties{0.3, 0.3});
+    // 4 F = m g, F = 4/3 E* sqrt(r) delta^(3/2)
+    const double F = b.mass*9.81/4;
+    const double delta = std::pow(3*F/(4*c.Estar*std::sqrt(r)), 2.0/3.0);
+    const auto contacts = w.contacts();
+    ASSERT_EQ(contacts.size(), 4u);
+    for (const auto& ct : contacts)
+    {
+        EXPECT_EQ(ct.type, FeaturePair::vertexWall);
+        EXPECT_NEAR(ct.overlap, delta, 0.01*delta);
+    }
+    EXPECT_NEAR(b.x.z(), h + r - delta, 0.01*delta);
+    EXPECT_LT(b.v.norm(), 1e-4);
+}
+
+
+namespace
+{
+
+//- Block on a plane with gravity tilted by alpha (same as a plane inclined
+//  by alpha); returns the position along the slope at t1 and t2 and the
+//  velocities there
+struct SlopeRun { double x1, x2, v1, v2; };
+
+SlopeRun blockOnIncline(double alphaDeg, double mu, double t1, double t2)
+{
+    const double alpha = alphaDeg*M_PI/180;
+    WorldSettings s;
+    s.timeStep = 2e-5;
+    s.gravity = 9.81*Vec3(std::sin(alpha), 0, -std::cos(alpha));
+    World w(s);
+    const int ice_ = w.addMaterial(ice(1e9));
+    const int wallMat = w.addMaterial(steel());
+    w.setPairProperties(ice_, wallMat, PairProperties{mu, 0.3});
+    const double r = 0.05;
+    const int block = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(0.5, 0.5, 0.25)), r));
+    Wall plane;
+    plane.name = "incline";
+    plane.material = wallMat;
+    w.addWall(plane);
+    // Start at the static overlap so there is little transient
+    const PairCoefficients c = PairCoefficients::make(ice(1e9), steel(), PairProperties{mu, 0.3});
+    w.addBody(block, ice_, Vec3::Zero());
+    const double m = w.bodies()[0].mass;
+    const double F = m*9.81*std::cos(alpha)/4;
+    const double delta = std::pow(3*F/(4*c.Estar*std::sqrt(r)), 2.0/3.0);
+    w.bodies()[0].x = Vec3(0, 0, 0.25 + r - delta);
+    w.initialise();
+
+    SlopeRun out;
+    w.advanceTo(t1);
+    out.x1 = w.bodies()[0].x.x();
+    out.v1 = w.bodies()[0].v.x();
+    w.advanceTo(t2);
+    out.x2 = w.bodies()[0].x.x();
+    out.v2 = w.bodies()[0].v.x();
+    return out;
+}
+
+} // anonymous namespace
+
+
+TEST(friction, blockSticksBelowTheFrictionAngle)
+{
+    // tan(10 deg) = 0.18 < mu = 0.3
+    const SlopeRun r = blockOnIncline(10, 0.3, 0.2, 1.0);
+    EXPECT_LT(std::abs(r.x2 - r.x1), 1e-5);
+    EXPECT_LT(std::abs(r.v2), 1e-4);
+}
+
+
+TEST(friction, blockSlidesWithTheCoulombAcceleration)
+{
+    // a = g (sin alpha - mu cos alpha)
+    const double alpha = 30, mu = 0.3;
+    const SlopeRun r = blockOnIncline(alpha, mu, 0.2, 1.2);
+    const double a = 9.81*(std::sin(alpha*M_PI/180) - mu*std::cos(alpha*M_PI/180));
+    const double aSim = (r.v2 - r.v1)/1.0;
+    EXPECT_NEAR(aSim, a, 0.02*a);
+}
+
+
+TEST(rotation, torqueFreeAsymmetricBodyFollowsEulersEquations)
+{
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    s.gravity = Vec3::Zero();
+    World w(s);
+    const int mat = w.addMaterial(ice());
+    const int box = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(1.0, 0.6, 0.3)), 0.05));
+    // Close to the intermediate axis: the body tumbles
+    w.addBody(box, mat, Vec3::Zero(), Quat::Identity(), Vec3::Zero(), Vec3(0.05, 2.0, 0.05));
+    w.initialise();
+    const Body& b = w.bodies()[0];
+    const Vec3 L0 = b.L;
+    const double E0 = b.kineticEnergy();
+    const Vec3 I = b.invInertia.cwiseInverse();
+    Vec3 wb = b.rotation().transpose()*b.omega();
+
+    // Reference: Euler's equations in the body frame, RK4 with a small step
+    auto rhs = [&](const Vec3& o)
+    {
+        return Vec3
+        (
+            (I.y() - I.z())*o.y()*o.z()/I.x(),
+            (I.z() - I.x())*o.z()*o.x()/I.y(),
+            (I.x() - I.y())*o.x()*o.y()/I.z()
+        );
+    };
+    const double h = 1e-5;
+    const double T = 3.0;
+    for (double t = 0; t < T - 0.5*h; t += h)
+    {
+        const Vec3 k1 = rhs(wb), k2 = rhs(wb + 0.5*h*k1);
+        const Vec3 k3 = rhs(wb + 0.5*h*k2), k4 = rhs(wb + h*k3);
+        wb += h/6*(k1 + 2*k2 + 2*k3 + k4);
+    }
+
+    double maxEnergyError = 0;
+    while (w.time() < T - 1e-9)
+    {
+        w.step();
+        maxEnergyError = std::max(maxEnergyError, std::abs(b.kineticEnergy() - E0)/E0);
+    }
+    EXPECT_EQ((b.L - L0).norm(), 0.0);
+    EXPECT_LT(maxEnergyError, 1e-4);
+    const Vec3 wSim = b.rotation().transpose()*b.omega();
+    EXPECT_LT((wSim - wb).norm(), 1e-2*wb.norm()) << wSim.transpose() << " vs " << wb.transpose();
+}
+
+
+namespace
+{
+
+//- A field of prisms in a walled box, drifting and colliding
+std::unique_ptr<World> makeField(int n, unsigned seed)
+{
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    s.gravity = Vec3::Zero();
+    auto w = std::make_unique<World>(s);
+    const int mat = w->addMaterial(ice(1e9));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    std::mt19937_64 rng(seed);
+    auto uni = [&](double a, double b)
+    {
+        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
+    };
+    const int side = int(std::ceil(std::sqrt(double(n))));
+    const double pitch = 3.0;
+    for (int k = 0; k < n; ++k)
+    {
+        std::vector<Vec2> poly;
+        const int m = 5 + int(rng() % 3);
+        const double phase = uni(0, 2*M_PI);
+        for (int j = 0; j < m; ++j)
+        {
+            const double a = phase + 2*M_PI*j/m;
+            const double rad = uni(1.0, 1.3);
+            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
+        }
+        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1));
+        const Vec3 x((k % side)*pitch, (k/side)*pitch, 0);
+        w->addBody(shape, mat, x, Quat::Identity(), Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5)));
+    }
+    const double L = side*pitch;
+    const Vec3 dirs[4] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY()};
+    const Vec3 pts[4] = {Vec3(-pitch, 0, 0), Vec3(L, 0, 0), Vec3(0, -pitch, 0), Vec3(0, L, 0)};
+    for (int k = 0; k < 4; ++k)
+    {
+        Wall wall;
+        wall.name = "side" + std::to_string(k);
+        wall.point = pts[k];
+        wall.normal = dirs[k];
+        wall.material = mat;
+        w->addWall(wall);
+    }
+    return w;
+}
+
+void expectSameState(const World& a, const World& b)
+{
+    ASSERT_EQ(a.bodies().size(), b.bodies().size());
+    for (std::size_t i = 0; i < a.bodies().size(); ++i)
+    {
+        const Body& p = a.bodies()[i];
+        const Body& q = b.bodies()[i];
+        EXPECT_EQ(p.x, q.x) << "body " << i;
+        EXPECT_EQ(p.v, q.v) << "body " << i;
+        EXPECT_EQ(p.L, q.L) << "body " << i;
+        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
+    }
+}
+
+} // anonymous namespace
+
+
+TEST(invariants, resultsDoNotDependOnTheNumberOfThreads)
+{
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    auto a = makeField(300, 7);
+    a->advanceTo(1.5);
+    omp_set_num_threads(std::max(2, threads));
+    auto b = makeField(300, 7);
+    b->advanceTo(1.5);
+    omp_set_num_threads(threads);
+    EXPECT_GT(a->neighbourListBuilds(), 1);
+    expectSameState(*a, *b);
+}
+
+
+TEST(invariants, restartEqualsUninterruptedRun)
+{
+    auto a = makeField(100, 11);
+    a->advanceTo(1.0);
+
+    auto b = makeField(100, 11);
+    b->advanceTo(0.5);
+    // Saved state -> a fresh world
+    auto c = makeField(100, 11);
+    for (std::size_t i = 0; i < b->bodies().size(); ++i)
+    {
+        Body& t = c->bodies()[i];
+        const Body& f = b->bodies()[i];
+        t.x = f.x; t.q = f.q; t.v = f.v; t.L = f.L;
+        t.force = f.force; t.torque = f.torque;
+    }
+    c->setContactRecords(b->contactRecords());
+    c->setTime(b->time());
+    c->initialise(true);
+    c->advanceTo(1.0);
+    EXPECT_GT(b->contactCount(), 0);
+    expectSameState(*a, *c);
+}

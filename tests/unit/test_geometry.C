@@ -1,0 +1,179 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM tests: convex polyhedra, dilated mass properties, shapes.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "geometry/ConvexPolyhedron.H"
+#include "geometry/DilatedShape.H"
+#include "geometry/MassProperties.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace iceDEM;
+
+TEST(geometry, boxTopology)
+{
+    const ConvexPolyhedron P = ConvexPolyhedron::box(Vec3(1, 2, 3));
+    EXPECT_EQ(P.vertices().size(), 8u);
+    EXPECT_EQ(P.edges().size(), 12u);
+    EXPECT_EQ(P.faces().size(), 6u);
+    EXPECT_NEAR(P.volume(), 48.0, 1e-12);
+    EXPECT_NEAR(P.area(), 2*(2*4 + 2*6 + 4*6), 1e-12);
+    EXPECT_NEAR(P.minWidth(), 2.0, 1e-12);
+    for (int e = 0; e < 12; ++e)
+    {
+        EXPECT_NEAR(P.exteriorAngle(e), M_PI/2, 1e-12);
+    }
+}
+
+TEST(geometry, steinerVolumeOfDilatedCube)
+{
+    // V = a^3 + 6 a^2 r + 3 pi a r^2 + 4/3 pi r^3  (method.md 1)
+    const double a = 1.3, r = 0.2;
+    const ConvexPolyhedron P = ConvexPolyhedron::box(Vec3::Constant(a/2));
+    const double exact = a*a*a + 6*a*a*r + 3*M_PI*a*r*r + 4.0/3.0*M_PI*r*r*r;
+    EXPECT_NEAR(steinerVolume(P, r), exact, 1e-12*exact);
+    // The moment integration tiles the same volume
+    EXPECT_NEAR(dilatedMassProperties(P, r).volume, exact, 1e-12*exact);
+    // Area: 6 a^2 + 6 pi a r + 4 pi r^2
+    const double area = 6*a*a + 6*M_PI*a*r + 4*M_PI*r*r;
+    EXPECT_NEAR(steinerArea(P, r), area, 1e-12*area);
+}
+
+//- Inertia of a dilated box (half extents h, radius r) about its centre by
+//  integration: a fine midpoint grid in x-y, exact in z for each column
+static Mat3 dilatedBoxInertiaNumerical(const Vec3& h, double r, int n)
+{
+    const double X = h.x() + r, Y = h.y() + r;
+    const double dx = 2*X/n, dy = 2*Y/n;
+    double Ixx = 0, Iyy = 0, Izz = 0, V = 0;
+    for (int i = 0; i < n; ++i)
+    {
+        const double x = -X + (i + 0.5)*dx;
+        const double ex = std::max(std::abs(x) - h.x(), 0.0);
+        for (int j = 0; j < n; ++j)
+        {
+            const double y = -Y + (j + 0.5)*dy;
+            const double ey = std::max(std::abs(y) - h.y(), 0.0);
+            const double s2 = ex*ex + ey*ey;
+            if (s2 >= r*r) continue;
+            const double zt = h.z() + std::sqrt(r*r - s2);
+            const double len = 2*zt;
+            const double z2 = 2*zt*zt*zt/3;
+            V += len*dx*dy;
+            Ixx += (y*y*len + z2)*dx*dy;
+            Iyy += (x*x*len + z2)*dx*dy;
+            Izz += (x*x + y*y)*len*dx*dy;
+        }
+    }
+    Mat3 I = Mat3::Zero();
+    I(0, 0) = Ixx;
+    I(1, 1) = Iyy;
+    I(2, 2) = Izz;
+    return I;
+}
+
+TEST(geometry, dilatedBoxInertiaAgainstIntegration)
+{
+    const Vec3 h(1.0, 0.6, 0.3);
+    const double r = 0.15;
+    const ConvexPolyhedron P = ConvexPolyhedron::box(h);
+    const MassProperties mp = dilatedMassProperties(P, r);
+    const Mat3 In = dilatedBoxInertiaNumerical(h, r, 3000);
+    EXPECT_NEAR(mp.centroid.norm(), 0, 1e-12);
+    for (int k = 0; k < 3; ++k)
+    {
+        EXPECT_NEAR(mp.inertia(k, k), In(k, k), 1e-3*In(k, k)) << "axis " << k;
+    }
+    EXPECT_NEAR(mp.inertia(0, 1), 0, 1e-9*In(0, 0));
+}
+
+TEST(geometry, polyhedronInertiaExact)
+{
+    // Box a x b x c: I_xx = V (b^2 + c^2)/12
+    const Vec3 h(1.0, 0.6, 0.3);
+    const MassProperties mp = polyhedronMassProperties(ConvexPolyhedron::box(h));
+    const double V = 8*h.prod();
+    EXPECT_NEAR(mp.volume, V, 1e-12*V);
+    EXPECT_NEAR(mp.inertia(0, 0), V*(4*h.y()*h.y() + 4*h.z()*h.z())/12, 1e-12);
+    EXPECT_NEAR(mp.inertia(2, 2), V*(4*h.x()*h.x() + 4*h.y()*h.y())/12, 1e-12);
+}
+
+TEST(geometry, hullMergesCoplanarTriangles)
+{
+    std::vector<Vec3> pts;
+    for (int k = 0; k < 8; ++k)
+    {
+        pts.emplace_back(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+    }
+    pts.emplace_back(0, 0, 0);          // inside
+    pts.emplace_back(0, 0, 1);          // on a face
+    pts.emplace_back(1, 1, 0);          // on an edge
+    const ConvexPolyhedron P = ConvexPolyhedron::hull(pts);
+    EXPECT_EQ(P.faces().size(), 6u);
+    EXPECT_EQ(P.vertices().size(), 8u);
+    EXPECT_EQ(P.edges().size(), 12u);
+    EXPECT_NEAR(P.volume(), 8, 1e-12);
+}
+
+TEST(geometry, badInputIsAnError)
+{
+    // Flat points
+    std::vector<Vec3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    EXPECT_THROW(ConvexPolyhedron::hull(flat), Error);
+    // Non-convex prism outline
+    std::vector<Vec2> dart = {{0, 0}, {2, 1}, {0, 2}, {0.5, 1}};
+    EXPECT_THROW(ConvexPolyhedron::prism(dart, 0, 1), Error);
+    // Dilation radius larger than half the thinnest width
+    const ConvexPolyhedron P = ConvexPolyhedron::box(Vec3(1, 1, 0.1));
+    try
+    {
+        DilatedShape S(P, 0.2);
+        FAIL() << "no error for a too large radius";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), "radius");
+    }
+    EXPECT_THROW(DilatedShape(P, 0), Error);
+    EXPECT_THROW(DilatedShape(P, -0.1), Error);
+}
+
+TEST(geometry, offsetOfBox)
+{
+    const ConvexPolyhedron P = ConvexPolyhedron::box(Vec3(1, 2, 3)).offset(0.5);
+    EXPECT_EQ(P.faces().size(), 6u);
+    EXPECT_NEAR(P.volume(), 3*5*7, 1e-9);
+}
+
+TEST(geometry, principalFrameOfRotatedBox)
+{
+    const Vec3 h(2, 1, 0.5);
+    const Quat Q(Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()));
+    const Vec3 c(3, -1, 2);
+    const ConvexPolyhedron P = ConvexPolyhedron::box(h).transformed(Q.toRotationMatrix(), c);
+    const DilatedShape S(P, 0.1, MassModel::faceted);
+    EXPECT_NEAR((S.centroidInput() - c).norm(), 0, 1e-12);
+    const Vec3 H = h + Vec3::Constant(0.1);
+    const double V = 8*H.prod();
+    EXPECT_NEAR(S.volume(), V, 1e-10*V);
+    // Principal moments of the outer box, ascending
+    std::vector<double> expected =
+    {
+        V*(4*H.y()*H.y() + 4*H.z()*H.z())/12,
+        V*(4*H.x()*H.x() + 4*H.z()*H.z())/12,
+        V*(4*H.x()*H.x() + 4*H.y()*H.y())/12
+    };
+    std::sort(expected.begin(), expected.end());
+    for (int k = 0; k < 3; ++k)
+    {
+        EXPECT_NEAR(S.principalInertia()[k], expected[k], 1e-9*expected[k]);
+    }
+    // The core in the principal frame is centred
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& v : S.core().vertices()) mean += v;
+    EXPECT_NEAR(mean.norm()/8, 0, 1e-12);
+    EXPECT_NEAR(S.boundingRadius(), (h).norm() + 0.1, 1e-12);
+}

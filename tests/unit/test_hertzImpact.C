@@ -1,0 +1,257 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM tests: Hertz impacts of each feature pair against the formulas of
+    method.md section 7.1, and the restitution coefficient.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "testWorlds.H"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+using namespace iceDEM;
+using namespace iceDEM::test;
+
+namespace
+{
+
+struct Impact
+{
+    double contactTime = 0;
+    double peakForce = 0;
+    double speedRatio = 0;
+    std::set<FeaturePair> types;
+    int maxContacts = 0;
+};
+
+//- Runs until the bodies separate; v measured along 'axis' on body 'probe'
+//  (relative to body 'other' when it moves)
+Impact runImpact(World& w, int a, int b, const Vec3& axis, double tEnd)
+{
+    Impact r;
+    const double vBefore = (w.bodies()[b].v - w.bodies()[a].v).dot(axis);
+    w.initialise();
+    bool started = false, ended = false;
+    double tStart = 0, tStop = 0;
+    const double dt = w.settings().timeStep;
+    while (w.time() < tEnd && !ended)
+    {
+        w.step();
+        const int n = w.contactCount();
+        if (n > 0)
+        {
+            if (!started) { started = true; tStart = w.time() - 0.5*dt; }
+            tStop = w.time() + 0.5*dt;
+            r.maxContacts = std::max(r.maxContacts, n);
+            for (const auto& c : w.contacts()) r.types.insert(c.type);
+            r.peakForce = std::max(r.peakForce, w.bodies()[b].contactForce.norm());
+        }
+        else if (started)
+        {
+            ended = true;
+        }
+    }
+    r.contactTime = tStop - tStart;
+    const double vAfter = (w.bodies()[b].v - w.bodies()[a].v).dot(axis);
+    r.speedRatio = -vAfter/vBefore;
+    return r;
+}
+
+WorldSettings impactSettings(double dt, double e)
+{
+    WorldSettings s;
+    s.timeStep = dt;
+    s.gravity = Vec3::Zero();
+    (void)e;
+    return s;
+}
+
+//- Cube with a corner pointing along 'dir' (world)
+Quat cornerTowards(const Vec3& dir)
+{
+    return rotationFromTo(Vec3(1, 1, 1).normalized(), dir.normalized());
+}
+
+} // anonymous namespace
+
+
+class hertzVertexFace : public ::testing::TestWithParam<double> {};
+
+TEST_P(hertzVertexFace, contactTimePeakForceRestitution)
+{
+    const double e = GetParam();
+    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
+    const double dt = 2e-5;
+    World w(impactSettings(dt, e));
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, e});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
+
+    // Fixed slab, top at z = 0; cube corner down, its lowest point 1 mm above
+    w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+    const double zc = std::sqrt(3.0)*h + r + 1e-3;
+    w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
+
+    const Body& b = w.bodies()[1];
+    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+
+    const PairCoefficients c = PairCoefficients::make(ice(E), ice(E), PairProperties{0, 1});
+    const HertzImpact ref(b.mass, r, c.Estar, v);
+
+    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexFace});
+    EXPECT_EQ(imp.maxContacts, 1);
+    EXPECT_NEAR(imp.speedRatio, e, 0.02*e);
+    if (e == 1.0)
+    {
+        EXPECT_NEAR(imp.contactTime, ref.contactTime, 0.02*ref.contactTime);
+        EXPECT_NEAR(imp.peakForce, ref.peakForce, 0.02*ref.peakForce);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(restitution, hertzVertexFace, ::testing::Values(1.0, 0.7, 0.3));
+
+
+TEST(hertzImpact, vertexVertex)
+{
+    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
+    World w(impactSettings(2e-5, 1));
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, 1.0});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    const double zc = std::sqrt(3.0)*h + r + 5e-4;
+    w.addBody(cube, mat, Vec3(0, 0, -zc), cornerTowards(Vec3(0, 0, 1)), Vec3(0, 0, 0.5*v));
+    w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -0.5*v));
+    const double m = w.bodies()[0].mass;
+
+    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    const PairCoefficients c = PairCoefficients::make(ice(E), ice(E), PairProperties{0, 1});
+    const HertzImpact ref(0.5*m, 0.5*r, c.Estar, v);
+
+    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexVertex});
+    EXPECT_EQ(imp.maxContacts, 1);
+    EXPECT_NEAR(imp.contactTime, ref.contactTime, 0.02*ref.contactTime);
+    EXPECT_NEAR(imp.peakForce, ref.peakForce, 0.02*ref.peakForce);
+    EXPECT_NEAR(imp.speedRatio, 1.0, 0.02);
+}
+
+
+TEST(hertzImpact, crossedEdges)
+{
+    const double r = 0.05, v = 1.0, E = 1e9;
+    World w(impactSettings(2e-5, 1));
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, 1.0});
+    const double s = 0.3;
+    const int barX = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(1, s, s)), r));
+    const int barY = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(s, 1, s)), r));
+    // Edge along x on top of the lower bar, edge along y under the upper bar
+    const Quat qa(Eigen::AngleAxisd(M_PI/4, Vec3::UnitX()));
+    const Quat qb(Eigen::AngleAxisd(M_PI/4, Vec3::UnitY()));
+    const double zc = std::sqrt(2.0)*s + r + 5e-4;
+    w.addBody(barX, mat, Vec3(0, 0, -zc), qa, Vec3(0, 0, 0.5*v));
+    w.addBody(barY, mat, Vec3(0, 0, zc), qb, Vec3(0, 0, -0.5*v));
+    const double m = w.bodies()[0].mass;
+
+    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    const PairCoefficients c = PairCoefficients::make(ice(E), ice(E), PairProperties{0, 1});
+    // Crossed at 90 degrees: R* = sqrt(r_i r_j)/sin(theta) = r
+    const HertzImpact ref(0.5*m, r, c.Estar, v);
+
+    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::edgeEdge});
+    EXPECT_EQ(imp.maxContacts, 1);
+    EXPECT_NEAR(imp.contactTime, ref.contactTime, 0.02*ref.contactTime);
+    EXPECT_NEAR(imp.peakForce, ref.peakForce, 0.02*ref.peakForce);
+    EXPECT_NEAR(imp.speedRatio, 1.0, 0.02);
+}
+
+
+TEST(hertzImpact, vertexEdge)
+{
+    // A corner onto the middle of an edge: R* = sqrt(r r r/(r + r))
+    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
+    World w(impactSettings(2e-5, 1));
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, 1.0});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    const int bar = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(1, 0.3, 0.3)), r));
+    const double zb = std::sqrt(2.0)*0.3 + r + 2.5e-4;
+    const double zc = std::sqrt(3.0)*h + r + 2.5e-4;
+    w.addBody(bar, mat, Vec3(0, 0, -zb), Quat(Eigen::AngleAxisd(M_PI/4, Vec3::UnitX())), Vec3(0, 0, 0.5*v));
+    w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -0.5*v));
+    const double m0 = w.bodies()[0].mass, m1 = w.bodies()[1].mass;
+
+    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    const PairCoefficients c = PairCoefficients::make(ice(E), ice(E), PairProperties{0, 1});
+    const HertzImpact ref(m0*m1/(m0 + m1), std::sqrt(r*r*r/(2*r)), c.Estar, v);
+
+    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexEdge});
+    EXPECT_EQ(imp.maxContacts, 1);
+    EXPECT_NEAR(imp.contactTime, ref.contactTime, 0.02*ref.contactTime);
+    EXPECT_NEAR(imp.peakForce, ref.peakForce, 0.02*ref.peakForce);
+}
+
+
+TEST(restitution, hertzDampingGivesTheRestitution)
+{
+    for (double e : {0.1, 0.3, 0.5, 0.7, 0.9})
+    {
+        EXPECT_NEAR(hertzRestitution(hertzDampingBeta(e)), e, 1e-6) << "e = " << e;
+    }
+    EXPECT_EQ(hertzDampingBeta(1.0), 0.0);
+    EXPECT_THROW(hertzDampingBeta(0.0), Error);
+    EXPECT_THROW(hertzDampingBeta(1.5), Error);
+}
+
+
+TEST(contactLaw, unknownModelNamesTheEntry)
+{
+    WorldSettings s;
+    s.contact.model = "hertzz";
+    try
+    {
+        World w(s);
+        FAIL() << "no error for an unknown contact model";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), "contactModel");
+        EXPECT_NE(std::string(e.what()).find("hertzSimplified"), std::string::npos);
+    }
+}
+
+
+TEST(contactLaw, timeStepTooLargeIsAnError)
+{
+    WorldSettings s;
+    s.timeStep = 0.5;
+    s.gravity = Vec3::Zero();
+    World w(s);
+    const int mat = w.addMaterial(ice());
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(0.5)), 0.05));
+    w.addBody(cube, mat, Vec3::Zero());
+    try
+    {
+        w.initialise();
+        FAIL() << "no error for a time step far above the contact time";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), "deltaT");
+    }
+}
+
+
+TEST(contactLaw, overlapAtStartIsAnError)
+{
+    WorldSettings s;
+    s.gravity = Vec3::Zero();
+    s.timeStep = 1e-5;
+    World w(s);
+    const int mat = w.addMaterial(ice());
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(0.5)), 0.05));
+    w.addBody(cube, mat, Vec3::Zero());
+    w.addBody(cube, mat, Vec3(0.3, 0, 0));
+    EXPECT_THROW(w.initialise(), Error);
+}
