@@ -26,18 +26,32 @@ Description
     database by this solver). Load libiceDEM with  libs ("libiceDEM.so");
     in controlDict.
 
-    One step:
+    With constant/iceDEMProperties the DEM of libiceDEM runs inside the
+    time step (iceDEMCoupling): the floes of constant/iceField, the
+    structure as prescribed DEM bodies (one per convex piece of
+    constant/structureDict), buoyancy and drag (empirical: uniform current;
+    resolved: the velocity field U sampled at every drag point). A case
+    without it runs the flow and the structure alone.
+
+    One step (DESIGN.md, explicit coupling, ice load lagged one step):
+      0. the ice load averaged over the previous DEM interval is registered
+         on the Time database (iceLoadForce, iceLoadMoment) for the iceLoad
+         restraint; the old sixDoF state is kept;
       1. mesh.update(): the sixDoF motion and the mesh motion;
       2. PIMPLE: U, p and turbulence on the moved mesh;
-      3. outputs: postProcessing/hullMotion (centre of mass, roll pitch yaw,
-         velocities) and the surge/heave periods in the log.
-
-    Not yet (DEM coupling, see the TODO notes in the time loop): DEM
-    sub-cycling with the hull as a prescribed body, resolved drag, ice load
-    handed to the iceLoad restraint.
+      3. DEM: sub-cycles from t - deltaT to t with its own step, the
+         structure's pose interpolated between the old and new sixDoF
+         states; the ice impulse on the structure averaged into the load
+         of the next step;
+      4. outputs: postProcessing/hullMotion (centre of mass, roll pitch yaw,
+         velocities) and the surge/heave periods in the log,
+         postProcessing/iceLoad, postProcessing/iceDEM, and at write times
+         the DEM state (<time>/uniform/iceDEMState, restart).
 
     With -noFlow the structure moves alone (no mesh, no fluid force), driven
-    from the same dynamicMeshDict: the analytic checks of the restraints.
+    from the same dynamicMeshDict, with the same DEM coupling: the moored
+    DEM-only study (the structure moves exactly as in the coupled solver
+    minus the fluid force), and the analytic checks of the restraints.
 
 Usage
     iceFloatingFoam [-noFlow] [-parallel] [OpenFOAM options]
@@ -56,6 +70,9 @@ Usage
 
 #include "structureMotion.H"
 #include "hullMotionLog.H"
+#include "iceDEMCoupling.H"
+
+#include <memory>
 
 // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
@@ -133,6 +150,18 @@ int main(int argc, char *argv[])
         motionLog.reset(new hullMotionLog(runTime));
     }
 
+    // The DEM (constant/iceDEMProperties present)
+    std::unique_ptr<iceDEMCoupling> dem;
+    if (iceDEMCoupling::present(runTime))
+    {
+        dem.reset(new iceDEMCoupling(runTime, &mesh, hullPtr));
+    }
+    else
+    {
+        Info<< "No constant/iceDEMProperties: flow and structure without"
+            << " ice" << nl;
+    }
+
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
     Info<< "\nStarting time loop\n" << endl;
@@ -147,11 +176,12 @@ int main(int argc, char *argv[])
 
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        // TODO(DEM coupling, DESIGN.md step 1): register the ice load
-        // averaged over the previous DEM interval on runTime as the
-        // uniformDimensionedVectorFields iceLoadForce / iceLoadMoment
-        // (reduced over the processors) before the mesh moves; the iceLoad
-        // restraint reads them in mesh.update().
+        // Ice load of the previous DEM interval for the iceLoad restraint
+        // (the DEM is replicated on every processor: the same load on all)
+        if (dem)
+        {
+            dem->beginStep();
+        }
 
         // --- Pressure-velocity PIMPLE corrector loop
         while (pimple.loop())
@@ -198,11 +228,11 @@ int main(int argc, char *argv[])
             }
         }
 
-        // TODO(DEM coupling, DESIGN.md step 3): sub-cycle the DEM from
-        // t - deltaT to t with the hull as a prescribed body, its pose
-        // interpolated between the old and new sixDoF states; resolved drag
-        // samples U here; accumulate the ice impulse on the hull for the
-        // next step's iceLoad.
+        // DEM sub-cycle over the step; the ice load of the next step
+        if (dem)
+        {
+            dem->solve();
+        }
 
         if (motionLog.valid())
         {

@@ -483,6 +483,12 @@ void World::computeForces(double dtTangential)
 
     // Per-body sums in a fixed order
     const int N = static_cast<int>(bodies_.size());
+
+    // Serial preparation of the body-force models (e.g. flow sampling)
+    for (const auto& m : forceModels_)
+    {
+        m->prepare(*this);
+    }
     for (auto& m : modelForce_) m.setZero();
     for (auto& m : modelTorque_) m.setZero();
     modelForce_.resize(N, Vec3::Zero());
@@ -621,7 +627,10 @@ void World::advanceTo(double t)
         const double remaining = t - time_;
         if (remaining < (1 + mergeFraction)*dt)
         {
-            stepBy(remaining);
+            // The last step: a full one when only round-off separates them,
+            // so the trajectory does not depend on how t was summed (a
+            // restart reads t from a directory name)
+            stepBy(remaining > (1 - mergeFraction)*dt ? dt : remaining);
             time_ = t;
         }
         else

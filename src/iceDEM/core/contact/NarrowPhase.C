@@ -44,6 +44,36 @@ inline bool inVertexCone
     return true;
 }
 
+//- For a vertex touching an edge with unit direction t: inside the vertex's
+//  cone, where an edge at the vertex that is nearly parallel to t
+//  (|d x t| < parallelSin) may lean towards the contact by up to parallelSin.
+//  A non-parallel edge leaning towards it brings its interior closer: the
+//  edge-edge pair owns that contact.
+inline bool inVertexConeForEdge
+(
+    const DilatedShape& S,
+    int v,
+    const Vec3& nBody,
+    const Vec3& tBody,
+    double parallelSin
+)
+{
+    const ConvexPolyhedron& P = S.core();
+    const auto& dirs = S.vertexEdgeDirections();
+    for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
+    {
+        const double lean = nBody.dot(dirs[k]);
+        if (lean > coneTolerance)
+        {
+            if (lean > parallelSin || dirs[k].cross(tBody).norm() >= parallelSin)
+            {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 //- Inside the normal wedge of edge e: strictly (not on a face's normal,
 //  which the vertex-face pairs own) or inclusive
 inline bool inEdgeCone
@@ -271,6 +301,7 @@ int findContacts
             const Vec3 q = p - dist*face.normal;
             if (!insideFace(SB, f, q, tolB)) continue;
             const Vec3 n = -(B.R*face.normal);
+            if (!inVertexCone(SA, i, RAt*n, s.parallelEdgeSin)) continue;
             col.add
             (
                 FeaturePair::vertexFace, featureKey(kVertex, i), featureKey(kFace, f),
@@ -292,6 +323,7 @@ int findContacts
             const Vec3 q = p - dist*face.normal;
             if (!insideFace(SA, f, q, tolA)) continue;
             const Vec3 n = A.R*face.normal;
+            if (!inVertexCone(SB, j, -(RBt*n), s.parallelEdgeSin)) continue;
             col.add
             (
                 FeaturePair::vertexFace, featureKey(kFace, f), featureKey(kVertex, j),
@@ -357,7 +389,11 @@ int findContacts
             const double dist = diff.norm();
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
-            if (!inEdgeCone(SB, b, -(RBt*n), true) || !inVertexCone(SA, i, RAt*n, s.parallelEdgeSin)) continue;
+            if
+            (
+                !inEdgeCone(SB, b, -(RBt*n), true)
+             || !inVertexConeForEdge(SA, i, RAt*n, RAt*de.normalized(), s.parallelEdgeSin)
+            ) continue;
             col.add
             (
                 FeaturePair::vertexEdge, featureKey(kVertex, i), featureKey(kEdge, b),
@@ -383,7 +419,11 @@ int findContacts
             const double dist = diff.norm();
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
-            if (!inEdgeCone(SA, a, RAt*n, true) || !inVertexCone(SB, j, -(RBt*n), s.parallelEdgeSin)) continue;
+            if
+            (
+                !inEdgeCone(SA, a, RAt*n, true)
+             || !inVertexConeForEdge(SB, j, -(RBt*n), RBt*de.normalized(), s.parallelEdgeSin)
+            ) continue;
             col.add
             (
                 FeaturePair::vertexEdge, featureKey(kEdge, a), featureKey(kVertex, j),

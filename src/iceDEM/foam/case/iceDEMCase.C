@@ -57,7 +57,7 @@ namespace Foam
     s.contact.maxEdgeRadiusRatio =
         inRange(d, "maxEdgeRadiusRatio", 1, 1e6, 10);
 
-    s.parallelEdgeSin = inRange(d, "parallelEdgeSin", 0, 0.5, 1e-3);
+    s.parallelEdgeSin = inRange(d, "parallelEdgeSin", 0, 0.5, iceDEM::WorldSettings().parallelEdgeSin);
     s.contactCheckVelocity = positive(d, "contactCheckVelocity", 1);
     s.contactStepsWarn = positive(d, "contactStepsWarn", 10);
     s.contactStepsMin = nonNegative(d, "contactStepsMin", 3);
@@ -253,6 +253,16 @@ void Foam::iceDEMCase::readInteractions()
     for (const ::iceDEM::Wall& w : world_->walls())
     {
         ++wallCount[w.material];
+    }
+    // The structure of a coupled solver (added later) meets the bodies like
+    // a wall does
+    if (properties_.isDict("structure"))
+    {
+        const dictionary& sd = properties_.subDict("structure");
+        if (sd.found("material", keyType::LITERAL))
+        {
+            ++wallCount[materialOf(sd)];
+        }
     }
     wordList matNames(nMat);
     forAllConstIters(materialIndex_, iter)
@@ -483,6 +493,45 @@ const Foam::dictionary& Foam::iceDEMCase::outputDict() const
 }
 
 
+void Foam::iceDEMCase::appendBodyName(const word& name)
+{
+    if (bodyNames_.size() + 1 != label(world_->bodies().size()))
+    {
+        FatalErrorInFunction
+            << "Body name " << name << " given for body "
+            << bodyNames_.size() << " of " << world_->bodies().size()
+            << ": name every added body right after adding it" << nl
+            << exit(FatalError);
+    }
+    bodyNames_.append(name);
+}
+
+
+void Foam::iceDEMCase::removeBodies(const std::vector<bool>& remove)
+{
+    if (state_.valid())
+    {
+        FatalErrorInFunction
+            << "Bodies can only be removed before the DEM starts" << nl
+            << exit(FatalError);
+    }
+    wordList kept;
+    forAll(bodyNames_, i)
+    {
+        if (size_t(i) >= remove.size() || !remove[i])
+        {
+            kept.append(bodyNames_[i]);
+        }
+    }
+    coreCall
+    (
+        iceField_, "removing bodies",
+        [&]{ world_->removeBodies(remove); }
+    );
+    bodyNames_.transfer(kept);
+}
+
+
 void Foam::iceDEMCase::start()
 {
     state_.reset(new iceDEMState(runTime_, *this));
@@ -490,6 +539,10 @@ void Foam::iceDEMCase::start()
     if (state_->found())
     {
         state_->apply(*world_);
+        if (state_->dict().isDict("coupling"))
+        {
+            couplingState_ = state_->dict().subDict("coupling");
+        }
         restarted_ = true;
         Info<< "iceDEM: restart from " << state_->objectPath()
             << " (DEM time " << world_->time() << ", "

@@ -89,13 +89,8 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
 
     if (dragType_ == "empirical")
     {
-        if (dd.found("U", keyType::LITERAL))
-        {
-            FatalIOErrorInFunction(dd)
-                << "Entry 'U' belongs to drag type resolved; type empirical"
-                << " takes the uniform 'current'" << nl
-                << exit(FatalIOError);
-        }
+        // 'U' (the field of type resolved) may stay in the dictionary and is
+        // not used: switching the type is the only change between the two
         const vector current = dd.getOrDefault<vector>("current", Zero);
         flow = std::make_shared<::iceDEM::UniformCurrent>(toVec3(current));
     }
@@ -106,8 +101,8 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
             FatalIOErrorInFunction(dd)
                 << "Entry 'type': drag type resolved needs the velocity"
                 << " field of a flow solver (iceFloatingFoam); this"
-                << " application has none: use type empirical (uniform"
-                << " 'current')"
+                << " application (iceDEMFoam, iceFloatingFoam -noFlow) has"
+                << " none: use type empirical (uniform 'current')"
                 << nl << exit(FatalIOError);
         }
         flow = resolvedFlow(dd);

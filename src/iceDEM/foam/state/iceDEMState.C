@@ -268,6 +268,16 @@ bool Foam::iceDEMState::writeData(Ostream& os) const
     os.writeEntry("contacts", c);
     os.writeEntry("contactSprings", xi);
 
+    if (!case_.couplingState().empty())
+    {
+        os.beginBlock("coupling");
+        for (const entry& e : case_.couplingState())
+        {
+            os << e;
+        }
+        os.endBlock();
+    }
+
     return os.good();
 }
 

@@ -61,7 +61,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::iceLoad::restrain
 {
     const Time& runTime = motion.time();
 
-    restraintPosition = motion.centreOfMass();
+    restraintPosition = motion.centreOfRotation();
     restraintForce = Zero;
     restraintMoment = Zero;
 

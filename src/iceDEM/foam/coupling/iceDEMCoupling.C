@@ -1,0 +1,738 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "iceDEMCoupling.H"
+#include "resolvedFlowVelocity.H"
+#include "floatingStructure.H"
+#include "dictionaryChecks.H"
+
+#include "contact/NarrowPhase.H"
+#include "geometry/DilatedShape.H"
+#include "hydro/FlowVelocity.H"
+
+#include "IOdictionary.H"
+#include "OSspecific.H"
+
+using namespace Foam::iceDEMChecks;
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * //
+
+namespace
+{
+
+//- World-frame core vertices of body i
+std::vector<::iceDEM::Vec3> worldCoreVertices
+(
+    const ::iceDEM::World& w,
+    int i
+)
+{
+    const ::iceDEM::Body& b = w.bodies()[i];
+    const ::iceDEM::Mat3 R = b.rotation();
+    const auto& V = w.shapeOf(i).core().vertices();
+    std::vector<::iceDEM::Vec3> out(V.size());
+    for (size_t k = 0; k < V.size(); ++k)
+    {
+        out[k] = R*V[k] + b.x;
+    }
+    return out;
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
+
+void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
+{
+    checkKeywords(sd, {"material", "radius", "dict"}, "structure");
+
+    ::iceDEM::World& w = case_->world();
+
+    const word matName = sd.get<word>("material");
+    const int material = w.materialIndex(matName);
+    if (material < 0)
+    {
+        wordList names;
+        for (const ::iceDEM::Material& m : w.materials())
+        {
+            names.append(word(m.name));
+        }
+        FatalIOErrorInFunction(sd)
+            << "Entry 'material': unknown material '" << matName << "'" << nl
+            << "    Materials: " << flatOutput(names) << nl
+            << exit(FatalIOError);
+    }
+    const scalar r = positive(sd, "radius");
+    const word dictName = sd.getOrDefault<word>("dict", "structureDict");
+
+    // The one definition of the structure (the case root's constant/, also
+    // in parallel)
+    const floatingStructure structure
+    (
+        floatingStructure::read(runTime_.globalPath(), dictName)
+    );
+    fixedCoR_ = structure.centreOfMass();
+
+    firstPiece_ = label(w.bodies().size());
+    nPieces_ = structure.pieces().size();
+
+    forAll(structure.pieces(), pi)
+    {
+        const pointField& pts = structure.pieces()[pi];
+        std::vector<::iceDEM::Vec3> v(pts.size());
+        forAll(pts, k)
+        {
+            v[k] = toVec3(pts[k]);
+        }
+        const string what
+        (
+            "structure piece " + Foam::name(pi) + " of constant/" + dictName
+        );
+
+        const ::iceDEM::ConvexPolyhedron piece =
+            coreCall(sd, what, [&]{ return ::iceDEM::ConvexPolyhedron::hull(v); });
+
+        const scalar width = piece.minWidth();
+        if (!(2*r < width))
+        {
+            FatalIOErrorInFunction(sd)
+                << "Entry 'radius' " << r << ": " << what.c_str()
+                << " is " << width << " m thin at its thinnest; the radius"
+                << " must be below half of that (the DEM core is the piece"
+                << " shrunk by the radius)" << nl
+                << exit(FatalIOError);
+        }
+
+        // Core: the piece shrunk by r, so the dilated body's outer faces
+        // are the piece's faces
+        const ::iceDEM::ConvexPolyhedron core =
+            coreCall(sd, what, [&]{ return piece.offset(-r); });
+
+        const label index = label(w.bodies().size());
+        coreCall
+        (
+            sd, what,
+            [&]
+            {
+                const int shape =
+                    w.addShape(::iceDEM::DilatedShape(core, r));
+                w.addBody
+                (
+                    shape,
+                    material,
+                    ::iceDEM::Vec3::Zero(),
+                    ::iceDEM::Quat::Identity(),
+                    ::iceDEM::Vec3::Zero(),
+                    ::iceDEM::Vec3::Zero(),
+                    ::iceDEM::BodyMotion::prescribed,
+                    index
+                );
+            }
+        );
+        case_->appendBodyName("hull" + Foam::name(pi));
+
+        pieceX0_.push_back(w.bodies()[index].x);
+        pieceQ0_.push_back(w.bodies()[index].q);
+    }
+
+    Info<< "iceDEM: structure from constant/" << dictName.c_str() << ": "
+        << nPieces_ << " convex piece(s) as prescribed DEM bodies (material "
+        << matName.c_str() << ", radius " << r << " m)" << nl;
+}
+
+
+void Foam::iceDEMCoupling::removeFloesInStructure()
+{
+    if (!nPieces_)
+    {
+        return;
+    }
+
+    const ::iceDEM::World& w = case_->world();
+    const int N = static_cast<int>(w.bodies().size());
+
+    std::vector<std::vector<::iceDEM::Vec3>> pieceVerts(nPieces_);
+    for (label p = 0; p < nPieces_; ++p)
+    {
+        pieceVerts[p] = worldCoreVertices(w, firstPiece_ + p);
+    }
+
+    ::iceDEM::NarrowPhaseSettings nps;
+    nps.parallelEdgeSin = w.settings().parallelEdgeSin;
+
+    std::vector<bool> remove(N, false);
+    DynamicList<word> removed;
+
+    for (int i = 0; i < N; ++i)
+    {
+        const ::iceDEM::Body& bi = w.bodies()[i];
+        if (!bi.isFree())
+        {
+            continue;
+        }
+        const std::vector<::iceDEM::Vec3> vi = worldCoreVertices(w, i);
+        const ::iceDEM::BodyView A
+        {
+            &w.shapeOf(i), vi.data(), bi.rotation(), bi.x
+        };
+
+        for (label p = 0; p < nPieces_ && !remove[i]; ++p)
+        {
+            const int j = firstPiece_ + p;
+            const ::iceDEM::Body& bj = w.bodies()[j];
+            const ::iceDEM::BodyView B
+            {
+                &w.shapeOf(j), pieceVerts[p].data(), bj.rotation(), bj.x
+            };
+
+            bool touch = false;
+            try
+            {
+                touch = ::iceDEM::coresIntersect(A, B);
+                if (!touch)
+                {
+                    ::iceDEM::Vec3 axis = ::iceDEM::Vec3::Zero();
+                    ::iceDEM::FoundContact found
+                    [
+                        ::iceDEM::World::maxContactsPerPair
+                    ];
+                    touch =
+                        ::iceDEM::findContacts
+                        (
+                            A, B, nps, axis, found,
+                            ::iceDEM::World::maxContactsPerPair
+                        ) > 0;
+                }
+            }
+            catch (const std::exception&)
+            {
+                touch = true;   // too many contacts: deep inside
+            }
+            if (touch)
+            {
+                remove[i] = true;
+                removed.append(case_->name(i));
+            }
+        }
+    }
+
+    if (removed.size())
+    {
+        Info<< "iceDEM: removed " << removed.size() << " floe(s) inside or"
+            << " touching the structure at its design pose:";
+        const label nShow = min(removed.size(), label(50));
+        for (label k = 0; k < nShow; ++k)
+        {
+            Info<< ' ' << removed[k].c_str();
+        }
+        if (nShow < removed.size())
+        {
+            Info<< " ...";
+        }
+        Info<< nl;
+
+        case_->removeBodies(remove);
+        firstPiece_ -= removed.size();
+    }
+    else
+    {
+        Info<< "iceDEM: no floe inside the structure" << nl;
+    }
+}
+
+
+void Foam::iceDEMCoupling::captureInitialConfiguration()
+{
+    // transform(p) = CoR + R (p - CoR0), R = Q initialQ^T (sixDoF keeps
+    // initialQ and CoR0 private: recover them from transform())
+    const sixDoFRigidBodyMotion& m = *motion_;
+    const point c = m.transform(point::zero);
+    ::iceDEM::Mat3 R;
+    for (direction k = 0; k < 3; ++k)
+    {
+        vector e(Zero);
+        e[k] = 1;
+        R.col(k) = toVec3(m.transform(point(e)) - c);
+    }
+    const ::iceDEM::Vec3 CoR = toVec3(m.centreOfRotation());
+    CoR0_ = toVector(R.transpose()*(CoR - toVec3(c)));
+
+    const ::iceDEM::Mat3 Q0 = R.transpose()*toMat3(m.orientation());
+    Q0init_ = tensor
+    (
+        Q0(0, 0), Q0(0, 1), Q0(0, 2),
+        Q0(1, 0), Q0(1, 1), Q0(1, 2),
+        Q0(2, 0), Q0(2, 1), Q0(2, 2)
+    );
+}
+
+
+Foam::vector Foam::iceDEMCoupling::omegaOf
+(
+    const sixDoFRigidBodyMotionState& s
+) const
+{
+    return s.Q() & (inv(motion_->momentOfInertia()) & s.pi());
+}
+
+
+Foam::vector Foam::iceDEMCoupling::setPiecePoses
+(
+    scalar s,
+    const sixDoFRigidBodyMotionState* s0,
+    const sixDoFRigidBodyMotionState* s1
+)
+{
+    ::iceDEM::World& w = case_->world();
+
+    if (!s0 || !s1 || !motion_)
+    {
+        for (label p = 0; p < nPieces_; ++p)
+        {
+            w.setPrescribedState
+            (
+                firstPiece_ + p, pieceX0_[p], pieceQ0_[p],
+                ::iceDEM::Vec3::Zero(), ::iceDEM::Vec3::Zero()
+            );
+        }
+        return fixedCoR_;
+    }
+
+    const ::iceDEM::Vec3 CoR =
+        (1 - s)*toVec3(s0->centreOfRotation()) + s*toVec3(s1->centreOfRotation());
+
+    const ::iceDEM::Quat qa(toMat3(s0->Q()));
+    const ::iceDEM::Quat qb(toMat3(s1->Q()));
+    const ::iceDEM::Quat qs = qa.normalized().slerp(s, qb.normalized());
+
+    const ::iceDEM::Mat3 R =
+        qs.toRotationMatrix()*toMat3(Q0init_).transpose();
+    const ::iceDEM::Quat qR = ::iceDEM::Quat(R).normalized();
+
+    const ::iceDEM::Vec3 v = (1 - s)*toVec3(s0->v()) + s*toVec3(s1->v());
+    const ::iceDEM::Vec3 omega =
+        (1 - s)*toVec3(omegaOf(*s0)) + s*toVec3(omegaOf(*s1));
+
+    const ::iceDEM::Vec3 c0 = toVec3(CoR0_);
+    for (label p = 0; p < nPieces_; ++p)
+    {
+        const ::iceDEM::Vec3 x = CoR + R*(pieceX0_[p] - c0);
+        w.setPrescribedState
+        (
+            firstPiece_ + p,
+            x,
+            qR*pieceQ0_[p],
+            v + omega.cross(x - CoR),
+            omega
+        );
+    }
+    return toVector(CoR);
+}
+
+
+void Foam::iceDEMCoupling::publishLoad()
+{
+    forceField_->value() = pendingForce_;
+    momentField_->value() = pendingMoment_;
+
+    dictionary& cs = case_->couplingState();
+    cs.set("iceLoadForce", pendingForce_);
+    cs.set("iceLoadMoment", pendingMoment_);
+}
+
+
+void Foam::iceDEMCoupling::checkRestraint() const
+{
+    if (!motion_)
+    {
+        if (nPieces_)
+        {
+            Info<< "iceDEM: the structure is fixed at its design pose (no"
+                << " sixDoF motion); the ice load is written, not applied"
+                << nl;
+        }
+        return;
+    }
+
+    IOobject io
+    (
+        "dynamicMeshDict",
+        runTime_.constant(),
+        runTime_,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+    if (!io.typeHeaderOk<IOdictionary>(true))
+    {
+        return;
+    }
+    const IOdictionary dmd(io);
+    const dictionary& coeffs =
+        dmd.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+    const dictionary* rd = coeffs.findDict("restraints");
+
+    bool found = false;
+    if (rd)
+    {
+        for (const entry& e : *rd)
+        {
+            if
+            (
+                e.isDict()
+             && e.dict().getOrDefault<word>
+                (
+                    "sixDoFRigidBodyMotionRestraint", word::null
+                ) == "iceLoad"
+             && e.dict().getOrDefault<word>("force", "iceLoadForce")
+             == forceField_->name()
+             && e.dict().getOrDefault<word>("moment", "iceLoadMoment")
+             == momentField_->name()
+            )
+            {
+                found = true;
+            }
+        }
+    }
+    if (!found)
+    {
+        WarningInFunction
+            << "No restraint of type iceLoad reading "
+            << forceField_->name() << '/' << momentField_->name()
+            << " in the restraints of " << io.objectPath() << ":" << nl
+            << "    the ice load is computed and written but does not move"
+            << " the structure" << endl;
+    }
+}
+
+
+// * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
+
+Foam::iceDEMCoupling::iceDEMCoupling
+(
+    const Time& runTime,
+    const fvMesh* mesh,
+    const sixDoFRigidBodyMotion* motion
+)
+:
+    runTime_(runTime),
+    mesh_(mesh),
+    motion_(motion),
+    flow_(),
+    case_(),
+    output_(),
+    firstPiece_(0),
+    nPieces_(0),
+    CoR0_(Zero),
+    Q0init_(tensor::I),
+    oldState_(),
+    fixedCoR_(Zero),
+    pendingForce_(Zero),
+    pendingMoment_(Zero)
+{
+    iceDEMCase::flowVelocityFactory factory;
+    if (mesh_)
+    {
+        factory = [this](const dictionary& dd)
+        {
+            flow_ = std::make_shared<resolvedFlowVelocity>(*mesh_, dd);
+            return std::shared_ptr<const ::iceDEM::FlowVelocity>(flow_);
+        };
+    }
+    case_.reset(new iceDEMCase(runTime, factory));
+
+    const dictionary& props = case_->properties();
+
+    word forceName("iceLoadForce");
+    word momentName("iceLoadMoment");
+    if (props.found("coupling", keyType::LITERAL))
+    {
+        const dictionary& cd = props.subDict("coupling");
+        checkKeywords(cd, {"force", "moment"}, "coupling");
+        forceName = cd.getOrDefault<word>("force", forceName);
+        momentName = cd.getOrDefault<word>("moment", momentName);
+    }
+
+    if (props.found("structure", keyType::LITERAL))
+    {
+        addStructure(props.subDict("structure"));
+    }
+    else
+    {
+        Info<< "iceDEM: no 'structure' in constant/iceDEMProperties: the"
+            << " floes do not meet the structure" << nl;
+    }
+
+    if (motion_)
+    {
+        captureInitialConfiguration();
+    }
+
+    removeFloesInStructure();
+
+    // The pieces at the structure's current pose
+    if (nPieces_)
+    {
+        const sixDoFRigidBodyMotionState* s =
+            motion_ ? &motion_->state() : nullptr;
+        setPiecePoses(1, s, s);
+    }
+
+    case_->prescribedMotion(false);
+    case_->start();
+
+    if (case_->restarted())
+    {
+        const dictionary& cs = case_->couplingState();
+        pendingForce_ = cs.getOrDefault<vector>("iceLoadForce", Zero);
+        pendingMoment_ = cs.getOrDefault<vector>("iceLoadMoment", Zero);
+        Info<< "iceDEM: pending ice load from the state: force "
+            << pendingForce_ << " N, moment " << pendingMoment_ << " N m"
+            << nl;
+    }
+
+    forceField_.reset
+    (
+        new uniformDimensionedVectorField
+        (
+            IOobject
+            (
+                forceName,
+                runTime.timeName(),
+                runTime,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE
+            ),
+            dimensionedVector(forceName, dimForce, pendingForce_)
+        )
+    );
+    momentField_.reset
+    (
+        new uniformDimensionedVectorField
+        (
+            IOobject
+            (
+                momentName,
+                runTime.timeName(),
+                runTime,
+                IOobject::NO_READ,
+                IOobject::NO_WRITE
+            ),
+            dimensionedVector(momentName, dimForce*dimLength, pendingMoment_)
+        )
+    );
+    publishLoad();
+
+    output_.reset(new iceDEMOutput(*case_));
+    output_->write(true);
+
+    if (Pstream::master())
+    {
+        const fileName dir
+        (
+            runTime.globalPath()/"postProcessing"/"iceLoad"
+           /runTime.timeName(runTime.startTime().value())
+        );
+        mkDir(dir);
+        loadFile_.reset(new OFstream(dir/"iceLoad.dat"));
+        loadFile_().precision
+        (
+            case_->outputDict().getOrDefault<label>("precision", 12)
+        );
+        loadFile_()
+            << "# Ice load on the structure, averaged over each time step"
+            << " (applied at the next step)" << nl
+            << "# F [N], M [N m] about the centre of rotation, global axes;"
+            << " contacts: most floe-structure contacts in a DEM sub-step"
+            << nl
+            << "# time Fx Fy Fz Mx My Mz contacts" << endl;
+    }
+
+    checkRestraint();
+
+    Info<< "iceDEM: coupled to " << (mesh_ ? "the flow" : "-noFlow")
+        << ", drag " << case_->dragType().c_str()
+        << ", DEM output in " << output_->path() << nl << endl;
+}
+
+
+// * * * * * * * * * * * * * * * * Destructor  * * * * * * * * * * * * * * //
+
+Foam::iceDEMCoupling::~iceDEMCoupling()
+{}
+
+
+// * * * * * * * * * * * * * * * Static Functions  * * * * * * * * * * * * //
+
+bool Foam::iceDEMCoupling::present(const Time& runTime)
+{
+    return isFile(runTime.globalPath()/"constant"/"iceDEMProperties");
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
+
+void Foam::iceDEMCoupling::beginStep()
+{
+    forceField_->value() = pendingForce_;
+    momentField_->value() = pendingMoment_;
+
+    if (motion_)
+    {
+        oldState_.reset(new sixDoFRigidBodyMotionState(motion_->state()));
+    }
+}
+
+
+void Foam::iceDEMCoupling::solve()
+{
+    ::iceDEM::World& w = case_->world();
+
+    const scalar t1 = runTime_.value();
+    const scalar t0 = w.time();
+    const scalar span = t1 - t0;
+
+    if (flow_)
+    {
+        flow_->update();
+    }
+
+    const sixDoFRigidBodyMotionState* s1 =
+        motion_ ? &motion_->state() : nullptr;
+    const sixDoFRigidBodyMotionState* s0 =
+        oldState_.valid() ? oldState_.get() : s1;
+
+    const scalar dt = w.settings().timeStep;
+    const scalar tol = 1e-6*dt;
+
+    ::iceDEM::Vec3 impulseF = ::iceDEM::Vec3::Zero();
+    ::iceDEM::Vec3 impulseM = ::iceDEM::Vec3::Zero();
+    label maxContacts = 0;
+    label steps = 0;
+
+    try
+    {
+        while (t1 - w.time() > tol)
+        {
+            const scalar tPrev = w.time();
+            const scalar remaining = t1 - tPrev;
+            const bool last = remaining < dt + tol;
+            const scalar tNext = last ? t1 : tPrev + dt;
+
+            ::iceDEM::Vec3 CoR = toVec3(fixedCoR_);
+            if (nPieces_)
+            {
+                const scalar s = span > 0 ? (tNext - t0)/span : 1;
+                CoR = toVec3(setPiecePoses(s, s0, s1));
+            }
+
+            // Steps of exactly dt (see iceDEMCase::advanceTo)
+            if (!last)
+            {
+                w.step();
+            }
+            else if (remaining > dt - tol)
+            {
+                w.step();
+                w.setTime(t1);
+            }
+            else
+            {
+                w.advanceTo(t1);
+            }
+            ++steps;
+
+            const scalar h = (last ? t1 : w.time()) - tPrev;
+
+            ::iceDEM::Vec3 F = ::iceDEM::Vec3::Zero();
+            ::iceDEM::Vec3 M = ::iceDEM::Vec3::Zero();
+            bool touching = false;
+            for (label p = 0; p < nPieces_; ++p)
+            {
+                const ::iceDEM::Body& b = w.bodies()[firstPiece_ + p];
+                if (b.contactForce.squaredNorm() > 0 || b.contactTorque.squaredNorm() > 0)
+                {
+                    touching = true;
+                    F += b.contactForce;
+                    M += b.contactTorque + (b.x - CoR).cross(b.contactForce);
+                }
+            }
+            impulseF += h*F;
+            impulseM += h*M;
+
+            if (touching)
+            {
+                label n = 0;
+                for (const auto& c : w.contacts())
+                {
+                    const bool pi =
+                        c.i >= firstPiece_ && c.i < firstPiece_ + nPieces_;
+                    const bool pj =
+                        c.j >= firstPiece_ && c.j < firstPiece_ + nPieces_;
+                    n += (pi || pj);
+                }
+                maxContacts = max(maxContacts, n);
+            }
+        }
+        w.setTime(t1);
+        w.checkFinite();
+    }
+    catch (const std::exception& err)
+    {
+        FatalErrorInFunction
+            << "DEM stopped at time " << w.time()
+            << " (advancing to " << t1 << "): " << err.what() << nl
+            << exit(FatalError);
+    }
+
+    if (span > 0)
+    {
+        pendingForce_ = toVector(impulseF/span);
+        pendingMoment_ = toVector(impulseM/span);
+    }
+    else
+    {
+        pendingForce_ = Zero;
+        pendingMoment_ = Zero;
+    }
+    publishLoad();
+
+    if (loadFile_.valid())
+    {
+        loadFile_()
+            << t1 << ' '
+            << pendingForce_.x() << ' ' << pendingForce_.y() << ' '
+            << pendingForce_.z() << ' '
+            << pendingMoment_.x() << ' ' << pendingMoment_.y() << ' '
+            << pendingMoment_.z() << ' ' << maxContacts << endl;
+    }
+
+    output_->write();
+
+    Info<< "iceDEM: " << steps << " DEM steps, contacts "
+        << w.contactCount() << " (" << w.contactPairCount() << " pairs),"
+        << " on the structure " << maxContacts << nl
+        << "    ice load " << pendingForce_ << " N, moment "
+        << pendingMoment_ << " N m" << nl;
+
+    if (flow_)
+    {
+        const resolvedFlowVelocity::statistics st = flow_->stats();
+        const label perEval =
+            st.evaluations ? st.points/st.evaluations : 0;
+        Info<< "    resolved drag: " << perEval
+            << " points per DEM evaluation, " << st.outside
+            << " of " << st.points << " outside the mesh (far-field current)";
+        if (st.unprepared)
+        {
+            Info<< ", " << st.unprepared << " not prepared";
+        }
+        Info<< nl;
+    }
+}
+
+
+// ************************************************************************* //

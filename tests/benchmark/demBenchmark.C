@@ -1,0 +1,832 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+Application
+    demBenchmark
+
+Description
+    Speed benchmark of the DEM core alone (no water, no flow), issue 7.
+    Built and run by tests/benchmark/Allrun; see tests/benchmark/README.md.
+
+    Fields (same seed every run):
+      drifting    N Voronoi prism floes (Lloyd-relaxed), mean equivalent
+                  diameter 10 m, thickness 1 m, r = 0.1 m, 70 % coverage,
+                  random in-plane velocity 0.5 m/s and spin |w_z| <= 0.05
+                  rad/s, four fixed walls, gravity off;
+      compacting  2000 floes at 90 % pushed along +x by a constant force per
+                  unit area against a fixed 48-sided vertical cylinder and
+                  the walls. A compaction phase (not timed) brings the field
+                  to persistent contact; its end state is cached on disk and
+                  every repetition restarts from it.
+    Material: ice, density 920 kg/m3, E = 1 GPa, nu = 0.33; friction 0.2,
+    restitution 0.3; DEM step 1 ms.
+
+    Per configuration (field, N, threads) it prints
+      N=<floes> threads=<t> steps=<s> wall_s=<w> floe_steps_per_s=<x> contacts_per_step=<c>
+    with the median wall time of the repetitions (only the world.step()
+    calls are timed), and comment lines (#) with the repetitions, memory
+    and the thread-invariance check:
+      threads_identical=yes|no   (final states of all thread counts equal
+                                  bit for bit)
+
+Usage
+    demBenchmark [options]
+      -fields drift,compact   fields to run (default both)
+      -N 500,2000,8000,20000  drifting field sizes
+      -compactN 2000          compacting field size
+      -threads 1,2            thread counts
+      -steps S                steps per repetition (default: 2e6/N, at least
+                              100 and at most 2000)
+      -reps R                 repetitions, median reported (default 3)
+      -warmup T               drifting: simulated seconds run before the
+                              timed window (not timed; default 0)
+      -compactTime T          compacting: simulated seconds of the
+                              compaction phase (default 30)
+      -push P                 compacting: push per unit area [Pa] (default 50)
+      -skin S                 neighbour-list skin [m] (default: the core's,
+                              the dilation radius)
+      -lloyd K                Lloyd iterations (default 5)
+      -seed K                 field and velocity seed (default 2026)
+      -cache DIR              where the compacted state is kept (default .)
+      -callgrind              collect callgrind costs of the stepping loop
+                              only (run under valgrind --collect-atstart=no)
+\*---------------------------------------------------------------------------*/
+
+#include "World.H"
+#include "contact/NeighbourList.H"
+#include "field/VoronoiField.H"
+#include "field/IceFloe.H"
+#include "geometry/DilatedShape.H"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <malloc.h>
+#include <omp.h>
+
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define HAVE_CALLGRIND 1
+#else
+#define HAVE_CALLGRIND 0
+#endif
+
+using namespace iceDEM;
+
+namespace
+{
+
+// * * * * * * * * * * * * * * * Small helpers * * * * * * * * * * * * * * //
+
+//- The benchmark's own deterministic random numbers (splitmix64)
+class SplitMix
+{
+    std::uint64_t s_;
+
+public:
+
+    explicit SplitMix(std::uint64_t seed) : s_(seed) {}
+
+    std::uint64_t next()
+    {
+        std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ULL);
+        z = (z ^ (z >> 30))*0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27))*0x94d049bb133111ebULL;
+        return z ^ (z >> 31);
+    }
+
+    //- Uniform in [0, 1)
+    double uniform01() { return double(next() >> 11)*0x1.0p-53; }
+
+    double uniform(double a, double b) { return a + (b - a)*uniform01(); }
+};
+
+
+//- A field of /proc/self/status in kB (VmRSS, VmHWM)
+long procStatusKB(const char* key)
+{
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    const std::size_t n = std::strlen(key);
+    while (std::getline(in, line))
+    {
+        if (line.compare(0, n, key) == 0 && line.size() > n && line[n] == ':')
+        {
+            return std::atol(line.c_str() + n + 1);
+        }
+    }
+    return -1;
+}
+
+
+//- Resident memory after returning the allocator's free pages [kB]
+long residentKB()
+{
+    malloc_trim(0);
+    return procStatusKB("VmRSS");
+}
+
+
+//- FNV-1a over the bytes of the bodies' state (x, q, v, L)
+std::uint64_t stateHash(const World& w)
+{
+    std::uint64_t h = 1469598103934665603ULL;
+    auto mix = [&h](const double* p, int n)
+    {
+        const unsigned char* b = reinterpret_cast<const unsigned char*>(p);
+        for (std::size_t k = 0; k < n*sizeof(double); ++k)
+        {
+            h ^= b[k];
+            h *= 1099511628211ULL;
+        }
+    };
+    for (const Body& b : w.bodies())
+    {
+        mix(b.x.data(), 3);
+        mix(b.q.coeffs().data(), 4);
+        mix(b.v.data(), 3);
+        mix(b.L.data(), 3);
+    }
+    return h;
+}
+
+
+std::vector<int> parseIntList(const std::string& s)
+{
+    std::vector<int> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, ','))
+    {
+        if (!item.empty()) out.push_back(std::atoi(item.c_str()));
+    }
+    return out;
+}
+
+
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n/2] : 0.5*(v[n/2 - 1] + v[n/2]);
+}
+
+
+// * * * * * * * * * * * * * * * * Options * * * * * * * * * * * * * * * * //
+
+struct Options
+{
+    bool drift = true;
+    bool compact = true;
+    std::vector<int> sizes{500, 2000, 8000, 20000};
+    int compactN = 2000;
+    std::vector<int> threads{1, 2};
+    int steps = 0;                  //!< 0: from the work per repetition
+    double work = 2e6;              //!< floe-steps per repetition
+    int reps = 3;
+    double warmup = 0;
+    double compactTime = 30;
+    double push = 50;
+    double skin = -1;
+    int lloyd = 5;
+    std::uint64_t seed = 2026;
+    std::string cache = ".";
+    bool callgrind = false;
+};
+
+
+[[noreturn]] void usage(const char* msg)
+{
+    std::cerr << "demBenchmark: " << msg << "\n"
+        "usage: demBenchmark [-fields drift,compact] [-N 500,2000,...]"
+        " [-compactN n] [-threads 1,2] [-steps s] [-reps r] [-warmup T]"
+        " [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
+        " [-cache DIR] [-callgrind]\n";
+    std::exit(2);
+}
+
+
+Options parseOptions(int argc, char* argv[])
+{
+    Options o;
+    for (int a = 1; a < argc; ++a)
+    {
+        const std::string opt = argv[a];
+        auto value = [&]() -> std::string
+        {
+            if (a + 1 >= argc) usage(("missing value of " + opt).c_str());
+            return argv[++a];
+        };
+        if (opt == "-fields")
+        {
+            const std::string v = value();
+            o.drift = v.find("drift") != std::string::npos;
+            o.compact = v.find("compact") != std::string::npos;
+            if (!o.drift && !o.compact) usage("-fields: drift and/or compact");
+        }
+        else if (opt == "-N") o.sizes = parseIntList(value());
+        else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
+        else if (opt == "-threads") o.threads = parseIntList(value());
+        else if (opt == "-steps") o.steps = std::atoi(value().c_str());
+        else if (opt == "-reps") o.reps = std::max(1, std::atoi(value().c_str()));
+        else if (opt == "-warmup") o.warmup = std::atof(value().c_str());
+        else if (opt == "-compactTime") o.compactTime = std::atof(value().c_str());
+        else if (opt == "-push") o.push = std::atof(value().c_str());
+        else if (opt == "-skin") o.skin = std::atof(value().c_str());
+        else if (opt == "-lloyd") o.lloyd = std::atoi(value().c_str());
+        else if (opt == "-seed") o.seed = std::strtoull(value().c_str(), nullptr, 10);
+        else if (opt == "-cache") o.cache = value();
+        else if (opt == "-callgrind") o.callgrind = true;
+        else usage(("unknown option " + opt).c_str());
+    }
+    if (o.threads.empty()) usage("-threads: empty list");
+    return o;
+}
+
+
+// * * * * * * * * * * * * * * * * * Fields * * * * * * * * * * * * * * * * //
+
+constexpr double kDiameter = 10;        //!< mean equivalent diameter [m]
+constexpr double kThickness = 1;        //!< [m]
+constexpr double kRadius = 0.1;         //!< dilation radius [m]
+constexpr double kDensity = 920;        //!< [kg/m3]
+constexpr double kSpeed = 0.5;          //!< drifting speed [m/s]
+constexpr double kSpin = 0.05;          //!< largest spin [rad/s]
+constexpr int kCylinderSides = 48;
+
+//- A generated field: floes (true outlines) + initial velocities + box
+struct Field
+{
+    std::string name;
+    std::vector<Floe> floes;
+    std::vector<Vec3> velocity, omega;
+    double xmin = 0, xmax = 0, ymin = 0, ymax = 0;
+    bool cylinder = false;
+    Vec2 cylinderCentre = Vec2::Zero();
+    double cylinderRadius = 0;
+    double push = 0;                    //!< Pa, along +x
+    int nCells = 0;
+};
+
+
+Field makeField
+(
+    const std::string& name,
+    int n,
+    double concentration,
+    bool cylinder,
+    const Options& o
+)
+{
+    Field f;
+    f.name = name;
+    const double area = M_PI*0.25*kDiameter*kDiameter;
+    const double L = std::sqrt(n*area/concentration);
+    f.xmin = 0; f.xmax = L; f.ymin = 0; f.ymax = L;
+
+    VoronoiFieldSettings s;
+    s.xmin = f.xmin; s.xmax = f.xmax; s.ymin = f.ymin; s.ymax = f.ymax;
+    s.nFloes = n;
+    s.concentration = concentration;
+    s.thickness.distribution = ThicknessSettings::Distribution::constant;
+    s.thickness.value = kThickness;
+    s.radius = kRadius;
+    s.seed = o.seed;
+    s.lloydIterations = o.lloyd;
+    s.iceDensity = kDensity;
+
+    if (cylinder)
+    {
+        // A structure about five floes across, two thirds down the push
+        f.cylinder = true;
+        f.cylinderRadius = 25;
+        f.cylinderCentre = Vec2(f.xmin + 0.67*L, 0.5*(f.ymin + f.ymax));
+        f.push = o.push;
+        ExclusionZone z;
+        z.name = "cylinder";
+        z.type = ExclusionZone::Type::circle;
+        z.centre = f.cylinderCentre;
+        z.radius = f.cylinderRadius + 0.5;
+        s.exclusionZones.push_back(z);
+    }
+
+    VoronoiFieldReport report;
+    f.floes = generateVoronoiField(s, report);
+    f.nCells = report.nCells;
+
+    // Initial velocities: the benchmark's own generator, in floe order
+    SplitMix rng(o.seed ^ 0x5eedf00dULL);
+    for (std::size_t i = 0; i < f.floes.size(); ++i)
+    {
+        const double angle = rng.uniform(0, 2*M_PI);
+        const double spin = rng.uniform(-kSpin, kSpin);
+        if (cylinder)
+        {
+            // Drift with the push, a little scatter across it
+            f.velocity.emplace_back(kSpeed, 0.1*kSpeed*std::sin(angle), 0);
+        }
+        else
+        {
+            f.velocity.emplace_back(kSpeed*std::cos(angle), kSpeed*std::sin(angle), 0);
+        }
+        f.omega.emplace_back(0, 0, spin);
+    }
+    return f;
+}
+
+
+//- Constant force per unit floe area along +x (free bodies only)
+class PushModel : public BodyForceModel
+{
+    std::vector<Vec3> force_;
+
+public:
+
+    PushModel(const World& w, double pressure)
+    {
+        for (const Body& b : w.bodies())
+        {
+            const double footprint =
+                w.shapes()[b.shape].volume()/kThickness;
+            force_.push_back
+            (
+                b.isFree() ? Vec3(pressure*footprint, 0, 0) : Vec3::Zero()
+            );
+        }
+    }
+
+    const char* name() const override { return "push"; }
+
+    void addForces
+    (
+        const World&,
+        int begin,
+        int end,
+        Vec3* force,
+        Vec3*
+    ) const override
+    {
+        for (int i = begin; i < end; ++i)
+        {
+            force[i] += force_[i];
+        }
+    }
+};
+
+
+//- Saved state of a world (restart)
+struct Snapshot
+{
+    bool valid = false;
+    double time = 0;
+    std::vector<Body> bodies;
+    std::vector<ContactRecord> records;
+};
+
+
+std::unique_ptr<World> buildWorld
+(
+    const Field& f,
+    const Options& o,
+    const Snapshot* snap
+)
+{
+    WorldSettings ws;
+    ws.timeStep = 1e-3;
+    ws.gravity = Vec3::Zero();
+    ws.skin = o.skin;
+    auto world = std::make_unique<World>(ws);
+
+    Material ice;
+    ice.name = "ice";
+    ice.density = kDensity;
+    ice.youngsModulus = 1e9;
+    ice.poissonsRatio = 0.33;
+    const int mat = world->addMaterial(ice);
+    PairProperties pp;
+    pp.friction = 0.2;
+    pp.restitution = 0.3;
+    world->setPairProperties(mat, mat, pp);
+
+    for (std::size_t i = 0; i < f.floes.size(); ++i)
+    {
+        const int shape = world->addShape(DilatedShape(f.floes[i].core(), kRadius));
+        world->addBody
+        (
+            shape, mat, Vec3::Zero(), Quat::Identity(),
+            f.velocity[i], f.omega[i], BodyMotion::free
+        );
+    }
+
+    if (f.cylinder)
+    {
+        std::vector<Vec2> polygon;
+        const double rc = f.cylinderRadius - kRadius;
+        for (int k = 0; k < kCylinderSides; ++k)
+        {
+            const double a = 2*M_PI*k/kCylinderSides;
+            polygon.push_back(f.cylinderCentre + rc*Vec2(std::cos(a), std::sin(a)));
+        }
+        const ConvexPolyhedron core = ConvexPolyhedron::prism(polygon, -5 + kRadius, 10 - 2*kRadius);
+        const int shape = world->addShape(DilatedShape(core, kRadius));
+        world->addBody
+        (
+            shape, mat, Vec3::Zero(), Quat::Identity(),
+            Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed
+        );
+    }
+
+    auto wall = [&](const char* name, const Vec3& p, const Vec3& n)
+    {
+        Wall w;
+        w.name = name;
+        w.point = p;
+        w.normal = n;
+        w.material = mat;
+        world->addWall(w);
+    };
+    wall("xmin", Vec3(f.xmin, 0, 0), Vec3::UnitX());
+    wall("xmax", Vec3(f.xmax, 0, 0), -Vec3::UnitX());
+    wall("ymin", Vec3(0, f.ymin, 0), Vec3::UnitY());
+    wall("ymax", Vec3(0, f.ymax, 0), -Vec3::UnitY());
+
+    if (f.push != 0)
+    {
+        world->addForceModel(std::make_shared<PushModel>(*world, f.push));
+    }
+
+    if (snap && snap->valid)
+    {
+        if (snap->bodies.size() != world->bodies().size())
+        {
+            throw Error("the saved state does not match the field");
+        }
+        world->bodies() = snap->bodies;
+        world->setTime(snap->time);
+        world->setContactRecords(snap->records);
+        world->initialise(true);
+    }
+    else
+    {
+        world->initialise();
+    }
+    return world;
+}
+
+
+Snapshot takeSnapshot(const World& w)
+{
+    Snapshot s;
+    s.valid = true;
+    s.time = w.time();
+    s.bodies = w.bodies();
+    s.records = w.contactRecords();
+    return s;
+}
+
+
+// Binary cache of a snapshot (the compacting field's compacted state)
+
+bool writeSnapshot(const std::string& file, const Snapshot& s)
+{
+    std::ofstream out(file, std::ios::binary);
+    if (!out) return false;
+    const std::uint64_t nb = s.bodies.size(), nr = s.records.size();
+    out.write(reinterpret_cast<const char*>(&s.time), sizeof(s.time));
+    out.write(reinterpret_cast<const char*>(&nb), sizeof(nb));
+    out.write(reinterpret_cast<const char*>(s.bodies.data()), nb*sizeof(Body));
+    out.write(reinterpret_cast<const char*>(&nr), sizeof(nr));
+    out.write(reinterpret_cast<const char*>(s.records.data()), nr*sizeof(ContactRecord));
+    return bool(out);
+}
+
+
+bool readSnapshot(const std::string& file, Snapshot& s)
+{
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return false;
+    std::uint64_t nb = 0, nr = 0;
+    in.read(reinterpret_cast<char*>(&s.time), sizeof(s.time));
+    in.read(reinterpret_cast<char*>(&nb), sizeof(nb));
+    if (!in || nb > 10000000) return false;
+    s.bodies.resize(nb);
+    in.read(reinterpret_cast<char*>(s.bodies.data()), nb*sizeof(Body));
+    in.read(reinterpret_cast<char*>(&nr), sizeof(nr));
+    if (!in || nr > 100000000) return false;
+    s.records.resize(nr);
+    in.read(reinterpret_cast<char*>(s.records.data()), nr*sizeof(ContactRecord));
+    s.valid = bool(in);
+    return s.valid;
+}
+
+
+// * * * * * * * * * * * * * * * * Measuring * * * * * * * * * * * * * * * //
+
+struct RunResult
+{
+    double wall = 0;                //!< seconds in world.step()
+    double contactsPerStep = 0;     //!< mean contactPairCount()
+    std::uint64_t hash = 0;
+    long rebuilds = 0;
+    double rssPerFloe = 0;          //!< bytes, world built and stepped
+    long peakKB = 0;
+};
+
+
+//- Candidate pairs of the neighbour list's criterion (bounding spheres
+//  closer than the skin, walls), counted by brute force at the current
+//  positions: the core does not expose its list
+long estimateCandidatePairs(const World& w, double skin)
+{
+    const auto& B = w.bodies();
+    const int n = static_cast<int>(B.size());
+    long pairs = 0;
+    for (int i = 0; i < n; ++i)
+    {
+        for (int j = i + 1; j < n; ++j)
+        {
+            const double reach =
+                w.shapeOf(i).boundingRadius() + w.shapeOf(j).boundingRadius() + skin;
+            if ((B[i].x - B[j].x).squaredNorm() < reach*reach) ++pairs;
+        }
+        for (const Wall& wall : w.walls())
+        {
+            if (wall.normal.dot(B[i].x - wall.point) < w.shapeOf(i).boundingRadius() + skin)
+            {
+                ++pairs;
+            }
+        }
+    }
+    return pairs;
+}
+
+
+RunResult runOnce
+(
+    const Field& f,
+    const Options& o,
+    const Snapshot* snap,
+    int steps,
+    bool measureMemory
+)
+{
+    RunResult r;
+    const long before = measureMemory ? residentKB() : 0;
+
+    std::unique_ptr<World> world = buildWorld(f, o, snap);
+    const long buildsBefore = world->neighbourListBuilds();
+
+    long contactSum = 0;
+    double wall = 0;
+#if HAVE_CALLGRIND
+    if (o.callgrind)
+    {
+        CALLGRIND_START_INSTRUMENTATION;
+        CALLGRIND_TOGGLE_COLLECT;
+    }
+#endif
+    for (int s = 0; s < steps; ++s)
+    {
+        const auto t0 = std::chrono::steady_clock::now();
+        world->step();
+        const auto t1 = std::chrono::steady_clock::now();
+        wall += std::chrono::duration<double>(t1 - t0).count();
+        contactSum += world->contactPairCount();
+    }
+#if HAVE_CALLGRIND
+    if (o.callgrind)
+    {
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_STOP_INSTRUMENTATION;
+    }
+#endif
+    world->checkFinite();
+
+    r.wall = wall;
+    r.contactsPerStep = steps > 0 ? double(contactSum)/steps : 0;
+    r.hash = stateHash(*world);
+    r.rebuilds = world->neighbourListBuilds() - buildsBefore;
+    if (measureMemory)
+    {
+        const long after = residentKB();
+        r.rssPerFloe = 1024.0*(after - before)/double(f.floes.size());
+        r.peakKB = procStatusKB("VmHWM");
+
+        // Breakdown: what the core stores per body and per candidate pair
+        const double skin = o.skin > 0 ? o.skin : kRadius;
+        const long pairs = estimateCandidatePairs(*world, skin);
+        double shapeBytes = 0;
+        for (const DilatedShape& S : world->shapes())
+        {
+            const ConvexPolyhedron& P = S.core();
+            const double nv = P.vertices().size();
+            const double ne = P.edges().size();
+            const double nf = P.faces().size();
+            const double nfv = P.faceVertices().size();
+            // core and outer polyhedra (vertices, edges, edge faces, faces,
+            // face loops, vertex-edge CSR) and the precomputed directions
+            const double poly =
+                nv*24 + ne*8 + ne*8 + nf*sizeof(P.faces()[0]) + nfv*4
+              + (nv + 1)*4 + 2*ne*4;
+            // 18 heap blocks of ~16 B allocator overhead each
+            shapeBytes += sizeof(DilatedShape) + 2*poly
+                + ne*24 + ne*48 + 2*ne*24 + nfv*24 + 18*16;
+        }
+        const double n = world->bodies().size();
+        std::printf
+        (
+            "# memory N=%zu rss_per_floe_B=%.0f peak_rss_MB=%.1f"
+            " | per floe: Body %zu B, shape ~%.0f B, world vertices %.0f B;"
+            " candidate pairs ~%.2f per floe x sizeof(ContactPair) %zu B = %.0f B"
+            " (StoredContact %zu B x %d inline)\n",
+            f.floes.size(), r.rssPerFloe, r.peakKB/1024.0,
+            sizeof(Body), shapeBytes/n,
+            24.0*world->shapes()[0].core().vertices().size(),
+            pairs/double(f.floes.size()), sizeof(ContactPair),
+            pairs/double(f.floes.size())*sizeof(ContactPair),
+            sizeof(StoredContact), World::maxContactsPerPair
+        );
+    }
+    return r;
+}
+
+
+int stepsFor(int n, const Options& o)
+{
+    if (o.steps > 0) return o.steps;
+    return std::max(100, std::min(2000, int(std::lround(o.work/n))));
+}
+
+
+//- Runs one field at every thread count; returns false if the final
+//  states differ between thread counts
+bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool memory)
+{
+    const int n = static_cast<int>(f.floes.size());
+    const int steps = stepsFor(n, o);
+    std::uint64_t firstHash = 0;
+    bool identical = true;
+    bool first = true;
+
+    for (int t : o.threads)
+    {
+        omp_set_num_threads(t);
+        std::vector<double> walls, contacts;
+        std::uint64_t hash = 0;
+        long rebuilds = 0;
+        for (int rep = 0; rep < o.reps; ++rep)
+        {
+            const RunResult r = runOnce(f, o, snap, steps, memory && first && rep == 0);
+            walls.push_back(r.wall);
+            contacts.push_back(r.contactsPerStep);
+            if (rep == 0)
+            {
+                hash = r.hash;
+                rebuilds = r.rebuilds;
+            }
+            else if (r.hash != hash)
+            {
+                identical = false;
+                std::printf("# WARNING: repetition %d differs from repetition 0\n", rep);
+            }
+        }
+        if (first)
+        {
+            firstHash = hash;
+            first = false;
+        }
+        else if (hash != firstHash)
+        {
+            identical = false;
+        }
+
+        const double w = median(walls);
+        std::printf
+        (
+            "N=%d threads=%d steps=%d wall_s=%.4g floe_steps_per_s=%.4g"
+            " contacts_per_step=%.1f\n",
+            n, t, steps, w, double(n)*steps/w, median(contacts)
+        );
+        std::printf("#   field=%s reps wall_s:", f.name.c_str());
+        for (double x : walls) std::printf(" %.4g", x);
+        std::printf("  neighbour_list_builds=%ld  state_hash=%016llx\n",
+            rebuilds, static_cast<unsigned long long>(hash));
+        std::fflush(stdout);
+    }
+    if (o.threads.size() > 1)
+    {
+        std::printf("# field=%s N=%d threads_identical=%s\n",
+            f.name.c_str(), n, identical ? "yes" : "no");
+    }
+    std::fflush(stdout);
+    return identical;
+}
+
+
+std::string loadAverage()
+{
+    std::ifstream in("/proc/loadavg");
+    std::string a, b, c;
+    in >> a >> b >> c;
+    return a + " " + b + " " + c;
+}
+
+} // anonymous namespace
+
+
+int main(int argc, char* argv[])
+{
+    const Options o = parseOptions(argc, argv);
+    bool identical = true;
+
+    try
+    {
+        std::printf("# demBenchmark: load average %s, %d processors, reps=%d\n",
+            loadAverage().c_str(), omp_get_num_procs(), o.reps);
+
+        if (o.drift)
+        {
+            for (int n : o.sizes)
+            {
+                const auto g0 = std::chrono::steady_clock::now();
+                const Field f = makeField("drifting", n, 0.7, false, o);
+                const double gen = std::chrono::duration<double>
+                    (std::chrono::steady_clock::now() - g0).count();
+                std::printf("# field=drifting nominal_N=%d floes=%zu box=%.1f m"
+                    " (generated in %.2f s)\n", n, f.floes.size(), f.xmax - f.xmin, gen);
+
+                Snapshot snap;
+                if (o.warmup > 0)
+                {
+                    omp_set_num_threads(o.threads.back());
+                    auto w = buildWorld(f, o, nullptr);
+                    while (w->time() < o.warmup - 0.5e-3) w->step();
+                    snap = takeSnapshot(*w);
+                    std::printf("# warm-up %.3g s: %d pairs in contact\n",
+                        o.warmup, w->contactPairCount());
+                }
+                identical = benchmarkField(f, o, snap.valid ? &snap : nullptr, !o.callgrind)
+                    && identical;
+            }
+        }
+
+        if (o.compact)
+        {
+            const Field f = makeField("compacting", o.compactN, 0.9, true, o);
+            std::printf("# field=compacting floes=%zu box=%.1f m push=%g Pa"
+                " cylinder r=%g m\n", f.floes.size(), f.xmax - f.xmin, f.push,
+                f.cylinderRadius);
+
+            std::ostringstream file;
+            file << o.cache << "/compacted_N" << o.compactN << "_seed" << o.seed
+                 << "_lloyd" << o.lloyd << "_push" << o.push << "_T" << o.compactTime
+                 << "_skin" << o.skin << ".state";
+            Snapshot snap;
+            if (readSnapshot(file.str(), snap) && snap.bodies.size() == f.floes.size() + 1)
+            {
+                std::printf("# compacted state read from %s (t = %g s)\n",
+                    file.str().c_str(), snap.time);
+            }
+            else
+            {
+                omp_set_num_threads(o.threads.back());
+                const auto c0 = std::chrono::steady_clock::now();
+                auto w = buildWorld(f, o, nullptr);
+                while (w->time() < o.compactTime - 0.5e-3) w->step();
+                snap = takeSnapshot(*w);
+                std::printf("# compaction %g s simulated in %.1f s wall: %d pairs in"
+                    " contact\n", o.compactTime, std::chrono::duration<double>
+                    (std::chrono::steady_clock::now() - c0).count(),
+                    w->contactPairCount());
+                if (writeSnapshot(file.str(), snap))
+                {
+                    std::printf("# compacted state written to %s\n", file.str().c_str());
+                }
+            }
+            identical = benchmarkField(f, o, &snap, !o.callgrind) && identical;
+        }
+    }
+    catch (const Error& e)
+    {
+        std::fprintf(stderr, "demBenchmark: %s\n", e.what());
+        return 1;
+    }
+
+    if (o.threads.size() > 1)
+    {
+        std::printf("threads_identical=%s\n", identical ? "yes" : "no");
+    }
+    return identical ? 0 : 3;
+}
