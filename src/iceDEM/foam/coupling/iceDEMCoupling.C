@@ -482,6 +482,12 @@ Foam::iceDEMCoupling::iceDEMCoupling
     }
 
     case_->prescribedMotion(false);
+
+    // The first force evaluation (start) samples the initial flow
+    if (flow_)
+    {
+        flow_->update();
+    }
     case_->start();
 
     if (case_->restarted())
