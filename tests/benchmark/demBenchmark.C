@@ -36,8 +36,10 @@ Usage
       -N 500,2000,8000,20000  drifting field sizes
       -compactN 2000          compacting field size
       -threads 1,2            thread counts
-      -steps S                steps per repetition (default: 2e6/N, at least
-                              100 and at most 2000)
+      -steps S                steps per repetition, every field (default:
+                              drifting 4e6/N within [100, 2000],
+                              compacting -compactSteps)
+      -compactSteps S         compacting steps per repetition (default 300)
       -reps R                 repetitions, median reported (default 3)
       -warmup T               drifting: simulated seconds run before the
                               timed window (not timed; default 0)
@@ -194,7 +196,8 @@ struct Options
     int compactN = 2000;
     std::vector<int> threads{1, 2};
     int steps = 0;                  //!< 0: from the work per repetition
-    double work = 2e6;              //!< floe-steps per repetition
+    double work = 4e6;              //!< drifting floe-steps per repetition
+    int compactSteps = 300;
     int reps = 3;
     double warmup = 0;
     double compactTime = 30;
@@ -211,7 +214,7 @@ struct Options
 {
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact] [-N 500,2000,...]"
-        " [-compactN n] [-threads 1,2] [-steps s] [-reps r] [-warmup T]"
+        " [-compactN n] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
         " [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
@@ -240,6 +243,8 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
+        else if (opt == "-compactSteps") o.compactSteps = std::atoi(value().c_str());
+        else if (opt == "-h" || opt == "-help") usage("help");
         else if (opt == "-reps") o.reps = std::max(1, std::atoi(value().c_str()));
         else if (opt == "-warmup") o.warmup = std::atof(value().c_str());
         else if (opt == "-compactTime") o.compactTime = std::atof(value().c_str());
@@ -663,9 +668,10 @@ RunResult runOnce
 }
 
 
-int stepsFor(int n, const Options& o)
+int stepsFor(int n, bool compacting, const Options& o)
 {
     if (o.steps > 0) return o.steps;
+    if (compacting) return o.compactSteps;
     return std::max(100, std::min(2000, int(std::lround(o.work/n))));
 }
 
@@ -675,7 +681,7 @@ int stepsFor(int n, const Options& o)
 bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool memory)
 {
     const int n = static_cast<int>(f.floes.size());
-    const int steps = stepsFor(n, o);
+    const int steps = stepsFor(n, f.push != 0, o);
     std::uint64_t firstHash = 0;
     bool identical = true;
     bool first = true;

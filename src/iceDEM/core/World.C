@@ -175,7 +175,7 @@ int World::addBody
 
 void World::addWall(const Wall& w)
 {
-    if (materialIndex(materials_.at(w.material).name) < 0 || !(w.normal.norm() > 0))
+    if (w.material < 0 || w.material >= int(materials_.size()) || !(w.normal.norm() > 0))
     {
         throw Error("wall " + w.name + ": needs a material and a non-zero normal", w.name);
     }
@@ -275,11 +275,12 @@ void World::initialise(bool restart)
         }
     }
 
+    // Default skin: the smallest dilation radius
     double skin = settings_.skin;
     if (!(skin > 0))
     {
         skin = std::numeric_limits<double>::max();
-        for (const Body& b : bodies_) skin = std::min(skin, shapeOf(&b - bodies_.data()).radius());
+        for (const Body& b : bodies_) skin = std::min(skin, shapes_[b.shape].radius());
         if (bodies_.empty()) skin = 1;
     }
 
@@ -303,11 +304,8 @@ void World::initialise(bool restart)
         }
     }
 
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-    {
-        modelForce_.resize(bodies_.size());
-        modelTorque_.resize(bodies_.size());
-    }
+    modelForce_.assign(bodies_.size(), Vec3::Zero());
+    modelTorque_.assign(bodies_.size(), Vec3::Zero());
 
     vertexOffset_.clear();
     updateWorldVertices();
@@ -489,10 +487,10 @@ void World::computeForces(double dtTangential)
     {
         m->prepare(*this);
     }
-    for (auto& m : modelForce_) m.setZero();
-    for (auto& m : modelTorque_) m.setZero();
-    modelForce_.resize(N, Vec3::Zero());
-    modelTorque_.resize(N, Vec3::Zero());
+    modelForce_.resize(N);
+    modelTorque_.resize(N);
+    std::fill(modelForce_.begin(), modelForce_.end(), Vec3::Zero());
+    std::fill(modelTorque_.begin(), modelTorque_.end(), Vec3::Zero());
 
     #pragma omp parallel if(N >= minParallelLoop)
     {

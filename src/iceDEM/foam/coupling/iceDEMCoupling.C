@@ -14,6 +14,7 @@
 
 #include "IOdictionary.H"
 #include "OSspecific.H"
+#include "boundBox.H"
 
 using namespace Foam::iceDEMChecks;
 
@@ -38,6 +39,82 @@ std::vector<::iceDEM::Vec3> worldCoreVertices
         out[k] = R*V[k] + b.x;
     }
     return out;
+}
+
+
+//- The convex polyhedron P with every face moved inwards by r: vertices
+//  from the intersections of three moved face planes that lie inside all of
+//  them, points closer than 1e-6 of the size merged (where four or more
+//  faces meet, as at the rings of a faceted hull, the moved planes meet in
+//  clusters of nearly equal points), then the convex hull
+::iceDEM::ConvexPolyhedron shrink
+(
+    const ::iceDEM::ConvexPolyhedron& P,
+    double r
+)
+{
+    const auto& F = P.faces();
+    double size = 0;
+    for (const auto& v : P.vertices())
+    {
+        size = std::max(size, (v - P.vertices()[0]).norm());
+    }
+    const double insideTol = 1e-9*size;
+    const double mergeTol = 1e-6*size;
+
+    std::vector<::iceDEM::Vec3> pts;
+    const int nf = static_cast<int>(F.size());
+    for (int i = 0; i < nf; ++i)
+    {
+        for (int j = i + 1; j < nf; ++j)
+        {
+            for (int k = j + 1; k < nf; ++k)
+            {
+                ::iceDEM::Mat3 A;
+                A.row(0) = F[i].normal.transpose();
+                A.row(1) = F[j].normal.transpose();
+                A.row(2) = F[k].normal.transpose();
+                if (std::abs(A.determinant()) < 1e-10)
+                {
+                    continue;
+                }
+                const ::iceDEM::Vec3 x = A.partialPivLu().solve
+                (
+                    ::iceDEM::Vec3
+                    (
+                        F[i].offset - r, F[j].offset - r, F[k].offset - r
+                    )
+                );
+                bool inside = true;
+                for (const auto& f : F)
+                {
+                    if (f.normal.dot(x) - f.offset + r > insideTol)
+                    {
+                        inside = false;
+                        break;
+                    }
+                }
+                if (!inside)
+                {
+                    continue;
+                }
+                bool dup = false;
+                for (const auto& q : pts)
+                {
+                    if ((q - x).norm() < mergeTol)
+                    {
+                        dup = true;
+                        break;
+                    }
+                }
+                if (!dup)
+                {
+                    pts.push_back(x);
+                }
+            }
+        }
+    }
+    return ::iceDEM::ConvexPolyhedron::hull(pts);
 }
 
 } // End anonymous namespace
@@ -77,11 +154,53 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
     fixedCoR_ = structure.centreOfMass();
 
     firstPiece_ = label(w.bodies().size());
-    nPieces_ = structure.pieces().size();
 
+    // DEM pieces: every convex piece of the structure split at its
+    // horizontal rings into segments between consecutive rings (a vertex of
+    // a segment joins three faces, so moving the faces inwards by r gives
+    // a clean core; where four faces meet the inner polyhedron has slivers)
+    List<pointField> segments;
     forAll(structure.pieces(), pi)
     {
         const pointField& pts = structure.pieces()[pi];
+        const scalar tol = 1e-9*(boundBox(pts, false).mag() + 1);
+        DynamicList<scalar> levels;
+        for (const point& p : pts)
+        {
+            bool known = false;
+            for (const scalar z : levels)
+            {
+                known = known || mag(p.z() - z) < tol;
+            }
+            if (!known)
+            {
+                levels.append(p.z());
+            }
+        }
+        Foam::sort(levels);
+        if (levels.size() < 3)
+        {
+            segments.append(pts);
+            continue;
+        }
+        for (label k = 0; k + 1 < levels.size(); ++k)
+        {
+            DynamicList<point> seg;
+            for (const point& p : pts)
+            {
+                if (p.z() > levels[k] - tol && p.z() < levels[k + 1] + tol)
+                {
+                    seg.append(p);
+                }
+            }
+            segments.append(pointField(seg));
+        }
+    }
+    nPieces_ = segments.size();
+
+    forAll(segments, pi)
+    {
+        const pointField& pts = segments[pi];
         std::vector<::iceDEM::Vec3> v(pts.size());
         forAll(pts, k)
         {
@@ -89,7 +208,7 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
         }
         const string what
         (
-            "structure piece " + Foam::name(pi) + " of constant/" + dictName
+            "structure segment " + Foam::name(pi) + " of constant/" + dictName
         );
 
         const ::iceDEM::ConvexPolyhedron piece =
@@ -109,7 +228,7 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
         // Core: the piece shrunk by r, so the dilated body's outer faces
         // are the piece's faces
         const ::iceDEM::ConvexPolyhedron core =
-            coreCall(sd, what, [&]{ return piece.offset(-r); });
+            coreCall(sd, what, [&]{ return shrink(piece, r); });
 
         const label index = label(w.bodies().size());
         coreCall
@@ -139,7 +258,8 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
     }
 
     Info<< "iceDEM: structure from constant/" << dictName.c_str() << ": "
-        << nPieces_ << " convex piece(s) as prescribed DEM bodies (material "
+        << structure.pieces().size() << " convex piece(s), " << nPieces_
+        << " segment(s) between rings as prescribed DEM bodies (material "
         << matName.c_str() << ", radius " << r << " m)" << nl;
 }
 

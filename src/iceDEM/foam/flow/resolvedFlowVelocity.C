@@ -19,6 +19,12 @@
 
 using namespace Foam::iceDEMChecks;
 
+namespace
+{
+    //- Fewer bodies are sampled on one thread
+    constexpr int minParallelBodies = 16;
+}
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
 
 Foam::resolvedFlowVelocity::resolvedFlowVelocity
@@ -126,13 +132,9 @@ Foam::label Foam::resolvedFlowVelocity::locate
             const label f = exitFace(p, celli);
             if (f < 0)
             {
-                // Inside the faces of celli: confirm with the tetrahedra
-                // (the face planes of a warped cell are approximate)
-                if (mesh_.pointInCell(p, celli, polyMesh::CELL_TETS))
-                {
-                    return celli;
-                }
-                break;
+                // Inside every face plane of celli (the interpolation takes
+                // the nearest tetrahedron of a warped cell)
+                return celli;
             }
             if (f >= mesh_.nInternalFaces())
             {
@@ -261,7 +263,8 @@ void Foam::resolvedFlowVelocity::prepare
     }
 
     // 1.-2. Sample points and local interpolation, per body
-    #pragma omp parallel for schedule(dynamic, 8)
+    // (a parallel region costs more than a few bodies' sampling)
+    #pragma omp parallel for schedule(dynamic, 4) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
         cursor_[i] = 0;
