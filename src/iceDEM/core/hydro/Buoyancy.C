@@ -63,6 +63,8 @@ void Buoyancy::addForces
     for (int i = begin; i < end; ++i)
     {
         const Body& b = bodies[i];
+        // A structure's hydrostatics belong to its own motion (sixDoF)
+        if (!b.isFree()) continue;
         const SubmergedVolume sub = submergedVolume
         (
             world.shapeOf(i).outer(),

@@ -180,6 +180,8 @@ void Drag::addForces
 {
     for (int i = begin; i < end; ++i)
     {
+        // Fixed and prescribed bodies (a structure) do not move with it
+        if (!world.bodies()[i].isFree()) continue;
         Vec3 F, M;
         bodyDrag(world, i, F, M);
         force[i] += F;
