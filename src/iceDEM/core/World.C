@@ -21,9 +21,12 @@ namespace iceDEM
 namespace
 {
 
-//- Loops shorter than this run on one thread: a parallel region costs more
-//  than it saves (and spins badly on a loaded machine)
+//- Loops shorter than this run on one thread: a parallel region (and its
+//  barrier) costs more than it saves, and waits badly on a loaded machine
 constexpr int minParallelLoop = 256;
+
+//- Loops over bodies: a body's work is small, so a larger cut-off
+constexpr int minParallelBodies = 1000;
 
 //- Rotation of the free rigid body by the symplectic splitting about the
 //  principal axes (x, y, z, y, x): each sub-rotation is exact, |L| is kept
@@ -35,10 +38,23 @@ void rotateFree(Quat& q, const Vec3& L, const Vec3& invI, double dt)
     {
         const double angle = h*pi[k]*invI[k];
         if (angle == 0) return;
-        const Eigen::AngleAxisd rot(angle, Vec3::Unit(k));
-        // The frame turns by +angle: body components turn by -angle
-        pi = rot.inverse()*pi;
-        q = q*Quat(rot);
+        // One sine and cosine of the half angle serve the quaternion and,
+        // by the double-angle formulas, the body components
+        const double c = std::cos(0.5*angle);
+        const double s = std::sin(0.5*angle);
+        const double cosA = 1 - 2*s*s;
+        const double sinA = 2*s*c;
+        // The frame turns by +angle about axis k: the body components of L
+        // in the plane (j, l) turn by -angle
+        const int j = (k + 1) % 3;
+        const int l = (k + 2) % 3;
+        const double pj = pi[j];
+        const double pl = pi[l];
+        pi[j] = cosA*pj + sinA*pl;
+        pi[l] = -sinA*pj + cosA*pl;
+        Quat dq(c, 0, 0, 0);
+        dq.vec()[k] = s;
+        q = q*dq;
     };
     sub(0, 0.5*dt);
     sub(1, 0.5*dt);
@@ -218,12 +234,16 @@ void World::updateWorldVertices()
                 vertexOffset_[i] + int(shapeOf(i).core().vertices().size());
         }
         worldVertices_.resize(vertexOffset_[N]);
+        rotations_.resize(N);
+        omegas_.resize(N);
     }
-    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
         const Body& b = bodies_[i];
         const Mat3 R = b.rotation();
+        rotations_[i] = R;
+        omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
         const auto& V = shapeOf(i).core().vertices();
         Vec3* w = worldVertices_.data() + vertexOffset_[i];
         for (std::size_t k = 0; k < V.size(); ++k)
@@ -374,7 +394,7 @@ void World::initialise(bool restart)
             {
                 std::ostringstream msg;
                 msg << "bodies " << bodies_[p.i].id << " and " << bodies_[p.j].id
-                    << " touch at the start (overlap " << p.contacts[0].overlap
+                    << " touch at the start (overlap " << p.deepest
                     << " m): move them apart";
                 throw Error(msg.str(), "bodies");
             }
@@ -384,13 +404,59 @@ void World::initialise(bool restart)
 }
 
 
+int World::findPairContacts
+(
+    const ContactPair& p,
+    Vec3& axis,
+    FoundContact* found
+) const
+{
+    const Body& bi = bodies_[p.i];
+    const BodyView A{&shapeOf(p.i), worldVertices(p.i), rotations_[p.i], bi.x};
+    if (p.isWall())
+    {
+        const Wall& w = walls_[p.wall()];
+        return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair);
+    }
+    const Body& bj = bodies_[p.j];
+    const BodyView B{&shapeOf(p.j), worldVertices(p.j), rotations_[p.j], bj.x};
+    NarrowPhaseSettings nps;
+    nps.parallelEdgeSin = settings_.parallelEdgeSin;
+    return findContacts(A, B, nps, axis, found, maxContactsPerPair);
+}
+
+
+ContactResult World::contactForce
+(
+    const ContactPair& p,
+    const ContactGeometry& g,
+    Vec3& xi,
+    double dtTangential
+) const
+{
+    const Body& bi = bodies_[p.i];
+    const Body* bj = p.isWall() ? nullptr : &bodies_[p.j];
+    const int M = static_cast<int>(materials_.size());
+    const int matJ = bj ? bj->material : walls_[p.wall()].material;
+    const PairCoefficients& coeffs = pairCoeffs_[bi.material*M + matJ];
+
+    double mEff;
+    if (!bj || !bj->isFree()) mEff = bi.mass;
+    else if (!bi.isFree()) mEff = bj->mass;
+    else mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
+
+    const Vec3& x = g.point;
+    Vec3 vRel = -(bi.v + omegas_[p.i].cross(x - bi.x));
+    if (bj) vRel += bj->v + omegas_[p.j].cross(x - bj->x);
+
+    return law_->evaluate(coeffs, g, mEff, vRel, xi, dtTangential);
+}
+
+
 void World::computeForces(double dtTangential)
 {
     auto& pairs = nlist_->pairs();
     const int nPairs = static_cast<int>(pairs.size());
-    const int M = static_cast<int>(materials_.size());
-    NarrowPhaseSettings nps;
-    nps.parallelEdgeSin = settings_.parallelEdgeSin;
 
     #pragma omp parallel if(nPairs >= minParallelLoop)
     {
@@ -401,25 +467,7 @@ void World::computeForces(double dtTangential)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
-            const Body& bi = bodies_[p.i];
-            const BodyView A{&shapeOf(p.i), worldVertices(p.i), bi.rotation(), bi.x};
-
-            int nFound;
-            int matJ;
-            const Body* bj = nullptr;
-            if (p.isWall())
-            {
-                const Wall& w = walls_[p.wall()];
-                nFound = findWallContacts(A, w.point, w.normal, found, maxContactsPerPair);
-                matJ = w.material;
-            }
-            else
-            {
-                bj = &bodies_[p.j];
-                const BodyView B{&shapeOf(p.j), worldVertices(p.j), bj->rotation(), bj->x};
-                nFound = findContacts(A, B, nps, p.axis, found, maxContactsPerPair);
-                matJ = bj->material;
-            }
+            const int nFound = findPairContacts(p, p.axis, found);
 
             const int nPrev = p.nContacts;
             std::copy(p.contacts, p.contacts + nPrev, previous);
@@ -429,19 +477,7 @@ void World::computeForces(double dtTangential)
             p.torqueOnI.setZero();
             p.torqueOnJ.setZero();
             p.elasticEnergy = 0;
-            if (nFound == 0)
-            {
-                continue;
-            }
-
-            const PairCoefficients& coeffs = pairCoeffs_[bi.material*M + matJ];
-            double mEff;
-            if (!bj || !bj->isFree()) mEff = bi.mass;
-            else if (!bi.isFree()) mEff = bj->mass;
-            else mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
-
-            const Vec3 wi = bi.omega();
-            const Vec3 wj = bj ? bj->omega() : Vec3::Zero();
+            p.deepest = 0;
 
             for (int c = 0; c < nFound; ++c)
             {
@@ -458,23 +494,14 @@ void World::computeForces(double dtTangential)
                         break;
                     }
                 }
+                const ContactResult r = contactForce(p, fc.g, sc.xi, dtTangential);
+
                 const Vec3& x = fc.g.point;
-                Vec3 vRel = -(bi.v + wi.cross(x - bi.x));
-                if (bj) vRel += bj->v + wj.cross(x - bj->x);
-
-                const ContactResult r =
-                    law_->evaluate(coeffs, fc.g, mEff, vRel, sc.xi, dtTangential);
-
-                sc.point = x;
-                sc.normal = fc.g.normal;
-                sc.forceOnJ = r.forceOnJ;
-                sc.overlap = fc.g.overlap;
-                sc.type = fc.g.type;
-
                 p.forceOnJ += r.forceOnJ;
-                p.torqueOnI += (x - bi.x).cross(-r.forceOnJ);
-                if (bj) p.torqueOnJ += (x - bj->x).cross(r.forceOnJ);
+                p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ);
+                if (!p.isWall()) p.torqueOnJ += (x - bodies_[p.j].x).cross(r.forceOnJ);
                 p.elasticEnergy += r.elasticEnergy;
+                p.deepest = std::max(p.deepest, fc.g.overlap);
             }
         }
     }
@@ -492,7 +519,7 @@ void World::computeForces(double dtTangential)
     std::fill(modelForce_.begin(), modelForce_.end(), Vec3::Zero());
     std::fill(modelTorque_.begin(), modelTorque_.end(), Vec3::Zero());
 
-    #pragma omp parallel if(N >= minParallelLoop)
+    #pragma omp parallel if(N >= minParallelBodies)
     {
         #pragma omp for schedule(static)
         for (int b = 0; b < N; ++b)
@@ -563,7 +590,7 @@ void World::computeForces(double dtTangential)
 void World::integrateFirstHalf(double dt)
 {
     const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
         Body& b = bodies_[i];
@@ -579,7 +606,7 @@ void World::integrateFirstHalf(double dt)
 void World::integrateSecondHalf(double dt)
 {
     const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelLoop)
+    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
         Body& b = bodies_[i];
@@ -717,17 +744,48 @@ void World::setContactRecords(const std::vector<ContactRecord>& records)
 
 std::vector<World::ContactInfo> World::contacts() const
 {
+    // Recomputed from the stored state (the contact geometry is that of the
+    // last force evaluation; the force uses the present velocities)
     std::vector<ContactInfo> list;
     if (!nlist_) return list;
+    FoundContact found[maxContactsPerPair];
     for (const ContactPair& p : nlist_->pairs())
     {
-        for (int c = 0; c < p.nContacts; ++c)
+        if (p.nContacts == 0) continue;
+        Vec3 axis = p.axis;
+        const int n = findPairContacts(p, axis, found);
+        for (int c = 0; c < n; ++c)
         {
-            const StoredContact& s = p.contacts[c];
-            list.push_back({p.i, p.j, s.type, s.point, s.normal, s.forceOnJ, s.overlap});
+            Vec3 xi = Vec3::Zero();
+            for (int m = 0; m < p.nContacts; ++m)
+            {
+                if (p.contacts[m].featureI == found[c].featureA && p.contacts[m].featureJ == found[c].featureB)
+                {
+                    xi = p.contacts[m].xi;
+                }
+            }
+            const ContactResult r = contactForce(p, found[c].g, xi, 0);
+            list.push_back
+            (
+                {p.i, p.j, found[c].g.type, found[c].g.point, found[c].g.normal, r.forceOnJ, found[c].g.overlap}
+            );
         }
     }
     return list;
+}
+
+
+int World::bodyContactCount(int b) const
+{
+    int n = 0;
+    if (nlist_)
+    {
+        for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+        {
+            n += nlist_->pairs()[nlist_->bodyPair(k)].nContacts;
+        }
+    }
+    return n;
 }
 
 

@@ -120,7 +120,9 @@ class Collector
 
 public:
     int n = 0;
-    double minDistance = std::numeric_limits<double>::max();
+    //- Infinity, not the largest double: squaring it must not overflow
+    //  (OpenFOAM traps floating-point overflow)
+    double minDistance = std::numeric_limits<double>::infinity();
     Vec3 minDirection = Vec3::Zero();
 
     Collector(FoundContact* out, int maxOut, double rA, double rB)
@@ -273,6 +275,13 @@ int findContacts
     }
 
     Collector col(out, maxOut, rA, rB);
+
+    // Feature pairs at or beyond this distance can neither touch nor improve
+    // the closest pair found so far (the next step's axis): skipped before
+    // the window tests
+    auto reach = [&col, rs]() { return std::max(rs, col.minDistance); };
+    auto sqr = [](double x) { return x*x; };
+    const double parallelSin2 = s.parallelEdgeSin*s.parallelEdgeSin;
     const Mat3 RAt = A.R.transpose();
     const Mat3 RBt = B.R.transpose();
     const double tolA = 1e-12*SA.boundingRadius();
@@ -297,7 +306,8 @@ int findContacts
         {
             const auto& face = PB.faces()[f];
             const double dist = face.normal.dot(p) - face.offset;
-            if (!(dist > 0) || !faceHasCandidate(PB, f, isCandB)) continue;
+            if (!(dist > 0) || dist >= reach()) continue;
+            if (!faceHasCandidate(PB, f, isCandB)) continue;
             const Vec3 q = p - dist*face.normal;
             if (!insideFace(SB, f, q, tolB)) continue;
             const Vec3 n = -(B.R*face.normal);
@@ -319,7 +329,8 @@ int findContacts
         {
             const auto& face = PA.faces()[f];
             const double dist = face.normal.dot(p) - face.offset;
-            if (!(dist > 0) || !faceHasCandidate(PA, f, isCandA)) continue;
+            if (!(dist > 0) || dist >= reach()) continue;
+            if (!faceHasCandidate(PA, f, isCandA)) continue;
             const Vec3 q = p - dist*face.normal;
             if (!insideFace(SA, f, q, tolA)) continue;
             const Vec3 n = A.R*face.normal;
@@ -349,19 +360,23 @@ int findContacts
             const Vec3& p2 = wB[EB[b][0]];
             const Vec3 d2 = wB[EB[b][1]] - p2;
             const double a22 = d2.squaredNorm();
-            const double sinAngle = d1.cross(d2).norm()/std::sqrt(a11*a22);
-            if (sinAngle < s.parallelEdgeSin) continue;
             const Vec3 r = p1 - p2;
             const double a12 = d1.dot(d2);
             const double b1 = d1.dot(r);
             const double b2 = d2.dot(r);
+            // den = |d1 x d2|^2: (nearly) parallel edges give no edge-edge
+            // contact, and are rejected before dividing by it
             const double den = a11*a22 - a12*a12;
+            if (!(den > parallelSin2*a11*a22)) continue;
             const double sa = (a12*b2 - a22*b1)/den;
             const double tb = (a11*b2 - a12*b1)/den;
             if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) continue;
             const Vec3 c1 = p1 + sa*d1;
             const Vec3 diff = p2 + tb*d2 - c1;
-            const double dist = diff.norm();
+            const double dist2 = diff.squaredNorm();
+            if (dist2 >= sqr(reach())) continue;
+            const double sinAngle = d1.cross(d2).norm()/std::sqrt(a11*a22);
+            const double dist = std::sqrt(dist2);
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
             if (!inEdgeCone(SA, a, RAt*n, false) || !inEdgeCone(SB, b, -(RBt*n), false)) continue;
@@ -386,7 +401,9 @@ int findContacts
             const double t = (p - e0).dot(de)/de.squaredNorm();
             if (!(t > 0 && t < 1)) continue;
             const Vec3 diff = e0 + t*de - p;
-            const double dist = diff.norm();
+            const double dist2 = diff.squaredNorm();
+            if (dist2 >= sqr(reach())) continue;
+            const double dist = std::sqrt(dist2);
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
             if
@@ -416,7 +433,9 @@ int findContacts
             if (!(t > 0 && t < 1)) continue;
             const Vec3 c = e0 + t*de;
             const Vec3 diff = p - c;
-            const double dist = diff.norm();
+            const double dist2 = diff.squaredNorm();
+            if (dist2 >= sqr(reach())) continue;
+            const double dist = std::sqrt(dist2);
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
             if
@@ -440,7 +459,9 @@ int findContacts
         {
             const int j = candB[cj];
             const Vec3 diff = wB[j] - wA[i];
-            const double dist = diff.norm();
+            const double dist2 = diff.squaredNorm();
+            if (dist2 >= sqr(reach())) continue;
+            const double dist = std::sqrt(dist2);
             if (dist < tiny) continue;
             const Vec3 n = diff/dist;
             if (!inVertexCone(SA, i, RAt*n, coneTolerance) || !inVertexCone(SB, j, -(RBt*n), coneTolerance)) continue;

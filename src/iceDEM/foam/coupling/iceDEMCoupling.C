@@ -791,14 +791,11 @@ void Foam::iceDEMCoupling::solve()
 
             if (touching)
             {
+                // Contacts on the hull pieces (pieces never touch each other)
                 label n = 0;
-                for (const auto& c : w.contacts())
+                for (label p = 0; p < nPieces_; ++p)
                 {
-                    const bool pi =
-                        c.i >= firstPiece_ && c.i < firstPiece_ + nPieces_;
-                    const bool pj =
-                        c.j >= firstPiece_ && c.j < firstPiece_ + nPieces_;
-                    n += (pi || pj);
+                    n += w.bodyContactCount(firstPiece_ + p);
                 }
                 maxContacts = max(maxContacts, n);
             }
