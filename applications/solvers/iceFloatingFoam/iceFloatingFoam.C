@@ -59,6 +59,7 @@ Usage
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
+#include "clockTime.H"
 #include "dynamicFvMesh.H"
 #include "dynamicMotionSolverFvMesh.H"
 #include "sixDoFRigidBodyMotionSolver.H"
@@ -166,8 +167,13 @@ int main(int argc, char *argv[])
 
     Info<< "\nStarting time loop\n" << endl;
 
+    // Wall time per CFD step: flow solve, mesh motion (sixDoF + mesh), DEM
+    // (with, separately, the resolved-velocity sampling inside it)
+    clockTime stepClock;
+
     while (runTime.run())
     {
+        scalar tFlow = 0, tMesh = 0, tDem = 0;
         #include "readDyMControls.H"
         #include "CourantNo.H"
         #include "setDeltaT.H"
@@ -189,6 +195,7 @@ int main(int argc, char *argv[])
             if (pimple.firstIter() || moveMeshOuterCorrectors)
             {
                 // Structure motion (sixDoF) and mesh motion
+                stepClock.timeIncrement();
                 mesh.update();
 
                 if (mesh.changing())
@@ -211,8 +218,10 @@ int main(int argc, char *argv[])
                         #include "meshCourantNo.H"
                     }
                 }
+                tMesh += stepClock.timeIncrement();
             }
 
+            stepClock.timeIncrement();
             #include "UEqn.H"
 
             // --- Pressure corrector loop
@@ -226,13 +235,20 @@ int main(int argc, char *argv[])
                 laminarTransport.correct();
                 turbulence->correct();
             }
+            tFlow += stepClock.timeIncrement();
         }
 
         // DEM sub-cycle over the step; the ice load of the next step
         if (dem)
         {
+            stepClock.timeIncrement();
             dem->solve();
+            tDem = stepClock.timeIncrement();
         }
+        const scalar tSampling = dem ? dem->samplingSeconds() : 0;
+        Info<< "Step wall time: flow " << tFlow << " s, mesh motion " << tMesh
+            << " s, velocity sampling " << tSampling << " s, DEM "
+            << tDem - tSampling << " s" << nl;
 
         if (motionLog.valid())
         {

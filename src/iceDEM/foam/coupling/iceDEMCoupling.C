@@ -858,4 +858,10 @@ void Foam::iceDEMCoupling::solve()
 }
 
 
+Foam::scalar Foam::iceDEMCoupling::samplingSeconds() const
+{
+    return flow_ ? flow_->stats().seconds : 0;
+}
+
+
 // ************************************************************************* //

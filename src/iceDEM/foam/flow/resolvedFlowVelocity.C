@@ -15,6 +15,7 @@
 #include "treeDataCell.H"
 #include "indexedOctree.H"
 
+#include <chrono>
 #include <cstring>
 
 using namespace Foam::iceDEMChecks;
@@ -250,6 +251,7 @@ void Foam::resolvedFlowVelocity::prepare
             << "resolved drag: update() was not called before the DEM step"
             << nl << exit(FatalError);
     }
+    const auto started = std::chrono::steady_clock::now();
 
     const int N = static_cast<int>(world.bodies().size());
     if (int(hint_.size()) != N)
@@ -376,6 +378,10 @@ void Foam::resolvedFlowVelocity::prepare
     ++stats_.evaluations;
     stats_.points += total;
     stats_.outside += outside;
+    stats_.seconds += std::chrono::duration<double>
+    (
+        std::chrono::steady_clock::now() - started
+    ).count();
 }
 
 
