@@ -303,6 +303,13 @@ void World::initialise(bool restart)
         for (const Body& b : bodies_) skin = std::min(skin, shapes_[b.shape].radius());
         if (bodies_.empty()) skin = 1;
     }
+    // Default feature skin: half the smallest dilation radius
+    featureSkin_ = settings_.featureSkin;
+    if (featureSkin_ < 0)
+    {
+        featureSkin_ = bodies_.empty() ? 0 : std::numeric_limits<double>::max();
+        for (const Body& b : bodies_) featureSkin_ = std::min(featureSkin_, 0.5*shapes_[b.shape].radius());
+    }
 
     // Time step against the Hertz contact time
     if (!bodies_.empty())
@@ -408,21 +415,23 @@ int World::findPairContacts
 (
     const ContactPair& p,
     Vec3& axis,
-    FoundContact* found
+    FoundContact* found,
+    FeaturePairList* features
 ) const
 {
     const Body& bi = bodies_[p.i];
-    const BodyView A{&shapeOf(p.i), worldVertices(p.i), rotations_[p.i], bi.x};
+    const BodyView A{&shapeOf(p.i), worldVertices(p.i), rotations_[p.i], bi.x, bi.q};
     if (p.isWall())
     {
         const Wall& w = walls_[p.wall()];
         return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair);
     }
     const Body& bj = bodies_[p.j];
-    const BodyView B{&shapeOf(p.j), worldVertices(p.j), rotations_[p.j], bj.x};
+    const BodyView B{&shapeOf(p.j), worldVertices(p.j), rotations_[p.j], bj.x, bj.q};
     NarrowPhaseSettings nps;
     nps.parallelEdgeSin = settings_.parallelEdgeSin;
-    return findContacts(A, B, nps, axis, found, maxContactsPerPair);
+    nps.featureSkin = featureSkin_;
+    return findContacts(A, B, nps, axis, found, maxContactsPerPair, features);
 }
 
 
@@ -467,7 +476,7 @@ void World::computeForces(double dtTangential)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
-            const int nFound = findPairContacts(p, p.axis, found);
+            const int nFound = findPairContacts(p, p.axis, found, &p.features);
 
             const int nPrev = p.nContacts;
             std::copy(p.contacts, p.contacts + nPrev, previous);

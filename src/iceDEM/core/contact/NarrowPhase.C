@@ -5,6 +5,7 @@
 
 #include "NarrowPhase.H"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -189,6 +190,395 @@ public:
     }
 };
 
+
+//- The six kinds of feature pairs, in the order of the full search. Index a
+//  is always a feature of A, b one of B.
+enum PairKind : std::uint32_t
+{
+    vertexFaceAB = 0,   //!< 3a. vertex a of A, face b of B
+    faceVertexAB,       //!< 3b. face a of A, vertex b of B
+    edgeEdgeAB,         //!< 3c. edge a of A, edge b of B
+    vertexEdgeAB,       //!< 3d. vertex a of A, edge b of B
+    edgeVertexAB,       //!< 3e. edge a of A, vertex b of B
+    vertexVertexAB      //!< 3f. vertex a of A, vertex b of B
+};
+
+// Entry of a FeaturePairList: kind (3 bits) | a (15 bits) | b (14 bits).
+// A convex polyhedron has at most 3V - 6 edges and 2V - 4 faces.
+static_assert(3*maxShapeVertices < (1 << 14), "feature index does not fit a list entry");
+
+inline std::uint32_t listEntry(PairKind k, int a, int b)
+{
+    return (std::uint32_t(k) << 29) | (std::uint32_t(a) << 14) | std::uint32_t(b);
+}
+
+//- Round-off allowance of the list's motion test, times R_A + R_B (covers
+//  the windows' tolerances, 1e-12 R, and the rounding of the distances)
+constexpr double listTolerance = 1e-6;
+
+//- Upper bound on the displacement of any point within R of the centroid
+//  from pose (x0, q0) to (x, q): |(R(q) - R(q0)) s| = 2 sin(theta/2) |s_perp|
+//  and |vec(q0^* q)| = sin(theta/2)
+inline double motionBound
+(
+    const Vec3& x0,
+    const Quat& q0,
+    const Vec3& x,
+    const Quat& q,
+    double R
+)
+{
+    return (x - x0).norm() + 2*(q0.conjugate()*q).vec().norm()*R;
+}
+
+//- Squared distance from p to the segment e0 + t de, t in [0, 1]
+inline double pointSegmentDistance2(const Vec3& p, const Vec3& e0, const Vec3& de)
+{
+    const double t = std::min(1.0, std::max(0.0, (p - e0).dot(de)/de.squaredNorm()));
+    return (e0 + t*de - p).squaredNorm();
+}
+
+//- Squared distance between the segments p1 + s d1 and p2 + t d2: the
+//  minimum over the parameter square is at the stationary point if that is
+//  inside, else on its boundary (an end of one segment against the other).
+//  Every candidate is the distance of two points of the segments; for nearly
+//  parallel segments the stationary point may be lost to round-off, which
+//  misses the minimum by at most about |d| sqrt(eps).
+inline double segmentDistance2
+(
+    const Vec3& p1,
+    const Vec3& d1,
+    const Vec3& p2,
+    const Vec3& d2
+)
+{
+    double d2min = std::min
+    (
+        std::min(pointSegmentDistance2(p1, p2, d2), pointSegmentDistance2(p1 + d1, p2, d2)),
+        std::min(pointSegmentDistance2(p2, p1, d1), pointSegmentDistance2(p2 + d2, p1, d1))
+    );
+    const Vec3 r = p1 - p2;
+    const double a11 = d1.squaredNorm();
+    const double a22 = d2.squaredNorm();
+    const double a12 = d1.dot(d2);
+    const double den = a11*a22 - a12*a12;
+    if (den > 0)
+    {
+        const double b1 = d1.dot(r);
+        const double b2 = d2.dot(r);
+        const double sa = (a12*b2 - a22*b1)/den;
+        const double tb = (a11*b2 - a12*b1)/den;
+        if (sa > 0 && sa < 1 && tb > 0 && tb < 1)
+        {
+            d2min = std::min(d2min, (p2 + tb*d2 - p1 - sa*d1).squaredNorm());
+        }
+    }
+    return d2min;
+}
+
+//- Lower bound of the distance from p (principal frame of S) to face f: the
+//  largest of the distances to its plane and to the outer sides of its
+//  edges' lines in the plane (the face lies in all these half-spaces)
+inline double pointFaceDistanceBound(const DilatedShape& S, int f, const Vec3& p)
+{
+    const ConvexPolyhedron& P = S.core();
+    const auto& face = P.faces()[f];
+    double d = std::abs(face.normal.dot(p) - face.offset);
+    for (int k = 0; k < face.count; ++k)
+    {
+        d = std::max(d, (p - P.vertices()[P.faceVertex(f, k)]).dot(S.faceEdgeNormal(f, k)));
+    }
+    return d;
+}
+
+
+//- One search between A and B: each feature pair is evaluated by one
+//  function (the windows, then the Collector), whether the full search
+//  enumerates it or a feature-pair list names it
+class PairSearch
+{
+    const BodyView& A_;
+    const BodyView& B_;
+    const DilatedShape& SA_;
+    const DilatedShape& SB_;
+    const ConvexPolyhedron& PA_;
+    const ConvexPolyhedron& PB_;
+    const Vec3* wA_;
+    const Vec3* wB_;
+    const double rA_, rB_, rs_;
+    const double parallelSin_, parallelSin2_;
+    const Mat3 RAt_, RBt_;
+    const double tolA_, tolB_, tiny_;
+
+    //- Feature pairs at or beyond this distance can neither touch nor
+    //  improve the closest pair found so far (the next step's axis):
+    //  skipped before the window tests
+    double reach() const { return std::max(rs_, col.minDistance); }
+
+public:
+
+    Collector col;
+
+    PairSearch
+    (
+        const BodyView& A,
+        const BodyView& B,
+        const NarrowPhaseSettings& s,
+        FoundContact* out,
+        int maxOut
+    )
+    :
+        A_(A), B_(B),
+        SA_(*A.shape), SB_(*B.shape),
+        PA_(SA_.core()), PB_(SB_.core()),
+        wA_(A.vertices), wB_(B.vertices),
+        rA_(SA_.radius()), rB_(SB_.radius()), rs_(rA_ + rB_),
+        parallelSin_(s.parallelEdgeSin),
+        parallelSin2_(s.parallelEdgeSin*s.parallelEdgeSin),
+        RAt_(A.R.transpose()), RBt_(B.R.transpose()),
+        tolA_(1e-12*SA_.boundingRadius()),
+        tolB_(1e-12*SB_.boundingRadius()),
+        tiny_(1e-14*(SA_.boundingRadius() + SB_.boundingRadius())),
+        col(out, maxOut, rA_, rB_)
+    {}
+
+    //- Vertex i of A in B's principal frame, and vertex j of B in A's
+    Vec3 vertexAInB(int i) const { return RBt_*(wA_[i] - B_.x); }
+    Vec3 vertexBInA(int j) const { return RAt_*(wB_[j] - A_.x); }
+
+    //- 3a. Vertex i of A on face f of B (face boundary included);
+    //  p = vertexAInB(i)
+    void vertexFace(int i, int f, const Vec3& p)
+    {
+        const auto& face = PB_.faces()[f];
+        const double dist = face.normal.dot(p) - face.offset;
+        if (!(dist > 0) || dist >= reach()) return;
+        const Vec3 q = p - dist*face.normal;
+        if (!insideFace(SB_, f, q, tolB_)) return;
+        const Vec3 n = -(B_.R*face.normal);
+        if (!inVertexCone(SA_, i, RAt_*n, parallelSin_)) return;
+        col.add
+        (
+            FeaturePair::vertexFace, featureKey(kVertex, i), featureKey(kFace, f),
+            wA_[i], n, dist, rA_, rB_
+        );
+    }
+
+    //- 3b. Vertex j of B on face f of A; p = vertexBInA(j)
+    void faceVertex(int f, int j, const Vec3& p)
+    {
+        const auto& face = PA_.faces()[f];
+        const double dist = face.normal.dot(p) - face.offset;
+        if (!(dist > 0) || dist >= reach()) return;
+        const Vec3 q = p - dist*face.normal;
+        if (!insideFace(SA_, f, q, tolA_)) return;
+        const Vec3 n = A_.R*face.normal;
+        if (!inVertexCone(SB_, j, -(RBt_*n), parallelSin_)) return;
+        col.add
+        (
+            FeaturePair::vertexFace, featureKey(kFace, f), featureKey(kVertex, j),
+            A_.R*q + A_.x, n, dist, rB_, rA_
+        );
+    }
+
+    //- 3c. Edge a of A and edge b of B, not parallel, closest points inside
+    //  both edges
+    void edgeEdge(int a, int b)
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        const Vec3& p1 = wA_[EA[a][0]];
+        const Vec3 d1 = wA_[EA[a][1]] - p1;
+        const double a11 = d1.squaredNorm();
+        const Vec3& p2 = wB_[EB[b][0]];
+        const Vec3 d2 = wB_[EB[b][1]] - p2;
+        const double a22 = d2.squaredNorm();
+        const Vec3 r = p1 - p2;
+        const double a12 = d1.dot(d2);
+        const double b1 = d1.dot(r);
+        const double b2 = d2.dot(r);
+        // den = |d1 x d2|^2: (nearly) parallel edges give no edge-edge
+        // contact, and are rejected before dividing by it
+        const double den = a11*a22 - a12*a12;
+        if (!(den > parallelSin2_*a11*a22)) return;
+        const double sa = (a12*b2 - a22*b1)/den;
+        const double tb = (a11*b2 - a12*b1)/den;
+        if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return;
+        const Vec3 c1 = p1 + sa*d1;
+        const Vec3 diff = p2 + tb*d2 - c1;
+        const double dist2 = diff.squaredNorm();
+        const double rch = reach();
+        if (dist2 >= rch*rch) return;
+        const double sinAngle = d1.cross(d2).norm()/std::sqrt(a11*a22);
+        const double dist = std::sqrt(dist2);
+        if (dist < tiny_) return;
+        const Vec3 n = diff/dist;
+        if (!inEdgeCone(SA_, a, RAt_*n, false) || !inEdgeCone(SB_, b, -(RBt_*n), false)) return;
+        col.add
+        (
+            FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
+            c1, n, dist, rA_, rB_, sinAngle
+        );
+    }
+
+    //- 3d. Vertex i of A on edge b of B
+    void vertexEdge(int i, int b)
+    {
+        const auto& EB = PB_.edges();
+        const Vec3& p = wA_[i];
+        const Vec3& e0 = wB_[EB[b][0]];
+        const Vec3 de = wB_[EB[b][1]] - e0;
+        const double t = (p - e0).dot(de)/de.squaredNorm();
+        if (!(t > 0 && t < 1)) return;
+        const Vec3 diff = e0 + t*de - p;
+        const double dist2 = diff.squaredNorm();
+        const double rch = reach();
+        if (dist2 >= rch*rch) return;
+        const double dist = std::sqrt(dist2);
+        if (dist < tiny_) return;
+        const Vec3 n = diff/dist;
+        if
+        (
+            !inEdgeCone(SB_, b, -(RBt_*n), true)
+         || !inVertexConeForEdge(SA_, i, RAt_*n, RAt_*de.normalized(), parallelSin_)
+        ) return;
+        col.add
+        (
+            FeaturePair::vertexEdge, featureKey(kVertex, i), featureKey(kEdge, b),
+            p, n, dist, rA_, rB_
+        );
+    }
+
+    //- 3e. Vertex j of B on edge a of A
+    void edgeVertex(int a, int j)
+    {
+        const auto& EA = PA_.edges();
+        const Vec3& p = wB_[j];
+        const Vec3& e0 = wA_[EA[a][0]];
+        const Vec3 de = wA_[EA[a][1]] - e0;
+        const double t = (p - e0).dot(de)/de.squaredNorm();
+        if (!(t > 0 && t < 1)) return;
+        const Vec3 c = e0 + t*de;
+        const Vec3 diff = p - c;
+        const double dist2 = diff.squaredNorm();
+        const double rch = reach();
+        if (dist2 >= rch*rch) return;
+        const double dist = std::sqrt(dist2);
+        if (dist < tiny_) return;
+        const Vec3 n = diff/dist;
+        if
+        (
+            !inEdgeCone(SA_, a, RAt_*n, true)
+         || !inVertexConeForEdge(SB_, j, -(RBt_*n), RBt_*de.normalized(), parallelSin_)
+        ) return;
+        col.add
+        (
+            FeaturePair::vertexEdge, featureKey(kEdge, a), featureKey(kVertex, j),
+            c, n, dist, rB_, rA_
+        );
+    }
+
+    //- 3f. Vertex i of A and vertex j of B (normal strictly inside both
+    //  vertex cones)
+    void vertexVertex(int i, int j)
+    {
+        const Vec3 diff = wB_[j] - wA_[i];
+        const double dist2 = diff.squaredNorm();
+        const double rch = reach();
+        if (dist2 >= rch*rch) return;
+        const double dist = std::sqrt(dist2);
+        if (dist < tiny_) return;
+        const Vec3 n = diff/dist;
+        if (!inVertexCone(SA_, i, RAt_*n, coneTolerance) || !inVertexCone(SB_, j, -(RBt_*n), coneTolerance)) return;
+        col.add
+        (
+            FeaturePair::vertexVertex, featureKey(kVertex, i), featureKey(kVertex, j),
+            wA_[i], n, dist, rA_, rB_
+        );
+    }
+
+    //- A listed feature pair
+    void evaluate(std::uint32_t entry)
+    {
+        const int a = int((entry >> 14) & 0x7fff);
+        const int b = int(entry & 0x3fff);
+        switch (PairKind(entry >> 29))
+        {
+            case vertexFaceAB: vertexFace(a, b, vertexAInB(a)); break;
+            case faceVertexAB: faceVertex(a, b, vertexBInA(b)); break;
+            case edgeEdgeAB: edgeEdge(a, b); break;
+            case vertexEdgeAB: vertexEdge(a, b); break;
+            case edgeVertexAB: edgeVertex(a, b); break;
+            case vertexVertexAB: vertexVertex(a, b); break;
+        }
+    }
+
+    //- True if a lower bound of the distance between the cores' features
+    //  of the pair is below d (for the list: d = r_A + r_B + featureSkin);
+    //  p: vertexAInB(a) for 3a, vertexBInA(b) for 3b, else unused
+    bool near(PairKind kind, int a, int b, const Vec3& p, double d) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        switch (kind)
+        {
+            case vertexFaceAB: return pointFaceDistanceBound(SB_, b, p) < d;
+            case faceVertexAB: return pointFaceDistanceBound(SA_, a, p) < d;
+            case edgeEdgeAB:
+            {
+                const Vec3& p1 = wA_[EA[a][0]];
+                const Vec3& p2 = wB_[EB[b][0]];
+                return segmentDistance2(p1, wA_[EA[a][1]] - p1, p2, wB_[EB[b][1]] - p2) < d*d;
+            }
+            case vertexEdgeAB:
+            {
+                const Vec3& e0 = wB_[EB[b][0]];
+                return pointSegmentDistance2(wA_[a], e0, wB_[EB[b][1]] - e0) < d*d;
+            }
+            case edgeVertexAB:
+            {
+                const Vec3& e0 = wA_[EA[a][0]];
+                return pointSegmentDistance2(wB_[b], e0, wA_[EA[a][1]] - e0) < d*d;
+            }
+            case vertexVertexAB: return (wB_[b] - wA_[a]).squaredNorm() < d*d;
+        }
+        return true;
+    }
+};
+
+
+//- Records the feature pairs of a full search into a FeaturePairList
+class ListBuilder
+{
+    PairSearch& search_;
+    FeaturePairList* list_;     //!< null: not recording (none, or overflowed)
+    double reach_;
+
+public:
+
+    ListBuilder(PairSearch& search, FeaturePairList* list, double reach)
+    :
+        search_(search), list_(list), reach_(reach)
+    {
+        if (list_) list_->count = 0;
+    }
+
+    bool recording() const { return list_ != nullptr; }
+
+    //- Keep the pair if it is near (before its evaluation: same order)
+    void visit(PairKind kind, int a, int b, const Vec3& p = Vec3::Zero())
+    {
+        if (!list_ || !search_.near(kind, a, b, p, reach_)) return;
+        if (list_->count == FeaturePairList::capacity)
+        {
+            list_->count = -1;  // too many: this pair goes without a list
+            list_ = nullptr;
+            return;
+        }
+        list_->entries[list_->count++] = listEntry(kind, a, b);
+    }
+};
+
 } // anonymous namespace
 
 
@@ -199,7 +589,8 @@ int findContacts
     const NarrowPhaseSettings& s,
     Vec3& axis,
     FoundContact* out,
-    int maxOut
+    int maxOut,
+    FeaturePairList* list
 )
 {
     const DilatedShape& SA = *A.shape;
@@ -208,9 +599,7 @@ int findContacts
     const ConvexPolyhedron& PB = SB.core();
     const int nA = static_cast<int>(PA.vertices().size());
     const int nB = static_cast<int>(PB.vertices().size());
-    const double rA = SA.radius();
-    const double rB = SB.radius();
-    const double rs = rA + rB;
+    const double rs = SA.radius() + SB.radius();
     const Vec3* wA = A.vertices;
     const Vec3* wB = B.vertices;
 
@@ -256,220 +645,150 @@ int findContacts
         }
     }
 
-    // 2. Features inside the slab of the best axis (exact culling: a point
-    //    farther than rs from the other core's slab cannot touch it)
-    int candA[maxShapeVertices], candB[maxShapeVertices];
-    bool isCandA[maxShapeVertices], isCandB[maxShapeVertices];
-    int nCandA = 0, nCandB = 0;
-    const double loA = bestMinB - rs;
-    const double hiB = bestMaxA + rs;
-    for (int i = 0; i < nA; ++i)
+    // The feature-pair list holds while the cores have moved less than
+    // featureSkin relative to each other since it was built (a bound that
+    // depends on the present poses only, not on the path)
+    if (!(s.featureSkin > 0)) list = nullptr;
+    bool useList = false;
+    if (list && list->count >= 0)
     {
-        isCandA[i] = best.dot(wA[i]) >= loA;
-        if (isCandA[i]) candA[nCandA++] = i;
-    }
-    for (int j = 0; j < nB; ++j)
-    {
-        isCandB[j] = best.dot(wB[j]) <= hiB;
-        if (isCandB[j]) candB[nCandB++] = j;
+        const double moved =
+            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
+          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+        useList = moved < s.featureSkin - eta;
     }
 
-    Collector col(out, maxOut, rA, rB);
+    PairSearch search(A, B, s, out, maxOut);
+    Collector& col = search.col;
 
-    // Feature pairs at or beyond this distance can neither touch nor improve
-    // the closest pair found so far (the next step's axis): skipped before
-    // the window tests
-    auto reach = [&col, rs]() { return std::max(rs, col.minDistance); };
-    auto sqr = [](double x) { return x*x; };
-    const double parallelSin2 = s.parallelEdgeSin*s.parallelEdgeSin;
-    const Mat3 RAt = A.R.transpose();
-    const Mat3 RBt = B.R.transpose();
-    const double tolA = 1e-12*SA.boundingRadius();
-    const double tolB = 1e-12*SB.boundingRadius();
-    const double tiny = 1e-14*(SA.boundingRadius() + SB.boundingRadius());
-
-    auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
+    if (useList)
     {
-        for (int k = 0; k < P.faces()[f].count; ++k)
+        // 2-3. The listed feature pairs, in the full search's order
+        for (int k = 0; k < list->count; ++k)
         {
-            if (isCand[P.faceVertex(f, k)]) return true;
-        }
-        return false;
-    };
-
-    // 3a. Vertex of A on a face of B (face boundary included)
-    for (int ci = 0; ci < nCandA; ++ci)
-    {
-        const int i = candA[ci];
-        const Vec3 p = RBt*(wA[i] - B.x);
-        for (int f = 0; f < int(PB.faces().size()); ++f)
-        {
-            const auto& face = PB.faces()[f];
-            const double dist = face.normal.dot(p) - face.offset;
-            if (!(dist > 0) || dist >= reach()) continue;
-            if (!faceHasCandidate(PB, f, isCandB)) continue;
-            const Vec3 q = p - dist*face.normal;
-            if (!insideFace(SB, f, q, tolB)) continue;
-            const Vec3 n = -(B.R*face.normal);
-            if (!inVertexCone(SA, i, RAt*n, s.parallelEdgeSin)) continue;
-            col.add
-            (
-                FeaturePair::vertexFace, featureKey(kVertex, i), featureKey(kFace, f),
-                wA[i], n, dist, rA, rB
-            );
+            search.evaluate(list->entries[k]);
         }
     }
-
-    // 3b. Vertex of B on a face of A (face boundary excluded)
-    for (int cj = 0; cj < nCandB; ++cj)
+    else
     {
-        const int j = candB[cj];
-        const Vec3 p = RAt*(wB[j] - A.x);
-        for (int f = 0; f < int(PA.faces().size()); ++f)
+        // A new list, if any: the feature pairs closer than listReach
+        const double listReach = rs + (list ? s.featureSkin : 0);
+        if (list)
         {
-            const auto& face = PA.faces()[f];
-            const double dist = face.normal.dot(p) - face.offset;
-            if (!(dist > 0) || dist >= reach()) continue;
-            if (!faceHasCandidate(PA, f, isCandA)) continue;
-            const Vec3 q = p - dist*face.normal;
-            if (!insideFace(SA, f, q, tolA)) continue;
-            const Vec3 n = A.R*face.normal;
-            if (!inVertexCone(SB, j, -(RBt*n), s.parallelEdgeSin)) continue;
-            col.add
-            (
-                FeaturePair::vertexFace, featureKey(kFace, f), featureKey(kVertex, j),
-                A.R*q + A.x, n, dist, rB, rA
-            );
+            list->xA = A.x;
+            list->xB = B.x;
+            list->qA = A.q;
+            list->qB = B.q;
         }
-    }
+        ListBuilder builder(search, list, listReach);
 
-    // Candidate edges: at least one end in the slab
-    const auto& EA = PA.edges();
-    const auto& EB = PB.edges();
-
-    // 3c. Edge-edge, not parallel, closest points inside both edges
-    for (int a = 0; a < int(EA.size()); ++a)
-    {
-        if (!isCandA[EA[a][0]] && !isCandA[EA[a][1]]) continue;
-        const Vec3& p1 = wA[EA[a][0]];
-        const Vec3 d1 = wA[EA[a][1]] - p1;
-        const double a11 = d1.squaredNorm();
-        for (int b = 0; b < int(EB.size()); ++b)
+        // 2. Features inside the slab of the best axis (exact culling: a
+        //    point farther than listReach from the other core's slab cannot
+        //    touch it, nor be listed)
+        int candA[maxShapeVertices], candB[maxShapeVertices];
+        bool isCandA[maxShapeVertices], isCandB[maxShapeVertices];
+        int nCandA = 0, nCandB = 0;
+        const double loA = bestMinB - listReach;
+        const double hiB = bestMaxA + listReach;
+        for (int i = 0; i < nA; ++i)
         {
-            if (!isCandB[EB[b][0]] && !isCandB[EB[b][1]]) continue;
-            const Vec3& p2 = wB[EB[b][0]];
-            const Vec3 d2 = wB[EB[b][1]] - p2;
-            const double a22 = d2.squaredNorm();
-            const Vec3 r = p1 - p2;
-            const double a12 = d1.dot(d2);
-            const double b1 = d1.dot(r);
-            const double b2 = d2.dot(r);
-            // den = |d1 x d2|^2: (nearly) parallel edges give no edge-edge
-            // contact, and are rejected before dividing by it
-            const double den = a11*a22 - a12*a12;
-            if (!(den > parallelSin2*a11*a22)) continue;
-            const double sa = (a12*b2 - a22*b1)/den;
-            const double tb = (a11*b2 - a12*b1)/den;
-            if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) continue;
-            const Vec3 c1 = p1 + sa*d1;
-            const Vec3 diff = p2 + tb*d2 - c1;
-            const double dist2 = diff.squaredNorm();
-            if (dist2 >= sqr(reach())) continue;
-            const double sinAngle = d1.cross(d2).norm()/std::sqrt(a11*a22);
-            const double dist = std::sqrt(dist2);
-            if (dist < tiny) continue;
-            const Vec3 n = diff/dist;
-            if (!inEdgeCone(SA, a, RAt*n, false) || !inEdgeCone(SB, b, -(RBt*n), false)) continue;
-            col.add
-            (
-                FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
-                c1, n, dist, rA, rB, sinAngle
-            );
+            isCandA[i] = best.dot(wA[i]) >= loA;
+            if (isCandA[i]) candA[nCandA++] = i;
         }
-    }
-
-    // 3d. Vertex of A on an edge of B
-    for (int ci = 0; ci < nCandA; ++ci)
-    {
-        const int i = candA[ci];
-        const Vec3& p = wA[i];
-        for (int b = 0; b < int(EB.size()); ++b)
+        for (int j = 0; j < nB; ++j)
         {
-            if (!isCandB[EB[b][0]] && !isCandB[EB[b][1]]) continue;
-            const Vec3& e0 = wB[EB[b][0]];
-            const Vec3 de = wB[EB[b][1]] - e0;
-            const double t = (p - e0).dot(de)/de.squaredNorm();
-            if (!(t > 0 && t < 1)) continue;
-            const Vec3 diff = e0 + t*de - p;
-            const double dist2 = diff.squaredNorm();
-            if (dist2 >= sqr(reach())) continue;
-            const double dist = std::sqrt(dist2);
-            if (dist < tiny) continue;
-            const Vec3 n = diff/dist;
-            if
-            (
-                !inEdgeCone(SB, b, -(RBt*n), true)
-             || !inVertexConeForEdge(SA, i, RAt*n, RAt*de.normalized(), s.parallelEdgeSin)
-            ) continue;
-            col.add
-            (
-                FeaturePair::vertexEdge, featureKey(kVertex, i), featureKey(kEdge, b),
-                p, n, dist, rA, rB
-            );
+            isCandB[j] = best.dot(wB[j]) <= hiB;
+            if (isCandB[j]) candB[nCandB++] = j;
         }
-    }
 
-    // 3e. Vertex of B on an edge of A
-    for (int cj = 0; cj < nCandB; ++cj)
-    {
-        const int j = candB[cj];
-        const Vec3& p = wB[j];
-        for (int a = 0; a < int(EA.size()); ++a)
+        // Candidate faces and edges: at least one vertex in the slab
+        auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
         {
-            if (!isCandA[EA[a][0]] && !isCandA[EA[a][1]]) continue;
-            const Vec3& e0 = wA[EA[a][0]];
-            const Vec3 de = wA[EA[a][1]] - e0;
-            const double t = (p - e0).dot(de)/de.squaredNorm();
-            if (!(t > 0 && t < 1)) continue;
-            const Vec3 c = e0 + t*de;
-            const Vec3 diff = p - c;
-            const double dist2 = diff.squaredNorm();
-            if (dist2 >= sqr(reach())) continue;
-            const double dist = std::sqrt(dist2);
-            if (dist < tiny) continue;
-            const Vec3 n = diff/dist;
-            if
-            (
-                !inEdgeCone(SA, a, RAt*n, true)
-             || !inVertexConeForEdge(SB, j, -(RBt*n), RBt*de.normalized(), s.parallelEdgeSin)
-            ) continue;
-            col.add
-            (
-                FeaturePair::vertexEdge, featureKey(kEdge, a), featureKey(kVertex, j),
-                c, n, dist, rB, rA
-            );
-        }
-    }
+            for (int k = 0; k < P.faces()[f].count; ++k)
+            {
+                if (isCand[P.faceVertex(f, k)]) return true;
+            }
+            return false;
+        };
+        const auto& EA = PA.edges();
+        const auto& EB = PB.edges();
+        auto edgeA = [&](int a) { return isCandA[EA[a][0]] || isCandA[EA[a][1]]; };
+        auto edgeB = [&](int b) { return isCandB[EB[b][0]] || isCandB[EB[b][1]]; };
+        const int nFA = static_cast<int>(PA.faces().size());
+        const int nFB = static_cast<int>(PB.faces().size());
+        bool isCandFaceA[2*maxShapeVertices], isCandFaceB[2*maxShapeVertices];
+        for (int f = 0; f < nFA; ++f) isCandFaceA[f] = faceHasCandidate(PA, f, isCandA);
+        for (int f = 0; f < nFB; ++f) isCandFaceB[f] = faceHasCandidate(PB, f, isCandB);
 
-    // 3f. Vertex-vertex (normal strictly inside both vertex cones)
-    for (int ci = 0; ci < nCandA; ++ci)
-    {
-        const int i = candA[ci];
+        // 3a. Vertex of A on a face of B
+        for (int ci = 0; ci < nCandA; ++ci)
+        {
+            const int i = candA[ci];
+            const Vec3 p = search.vertexAInB(i);
+            for (int f = 0; f < nFB; ++f)
+            {
+                if (!isCandFaceB[f]) continue;
+                builder.visit(vertexFaceAB, i, f, p);
+                search.vertexFace(i, f, p);
+            }
+        }
+
+        // 3b. Vertex of B on a face of A
         for (int cj = 0; cj < nCandB; ++cj)
         {
             const int j = candB[cj];
-            const Vec3 diff = wB[j] - wA[i];
-            const double dist2 = diff.squaredNorm();
-            if (dist2 >= sqr(reach())) continue;
-            const double dist = std::sqrt(dist2);
-            if (dist < tiny) continue;
-            const Vec3 n = diff/dist;
-            if (!inVertexCone(SA, i, RAt*n, coneTolerance) || !inVertexCone(SB, j, -(RBt*n), coneTolerance)) continue;
-            col.add
-            (
-                FeaturePair::vertexVertex, featureKey(kVertex, i), featureKey(kVertex, j),
-                wA[i], n, dist, rA, rB
-            );
+            const Vec3 p = search.vertexBInA(j);
+            for (int f = 0; f < nFA; ++f)
+            {
+                if (!isCandFaceA[f]) continue;
+                builder.visit(faceVertexAB, f, j, p);
+                search.faceVertex(f, j, p);
+            }
+        }
+
+        // 3c. Edge-edge
+        for (int a = 0; a < int(EA.size()); ++a)
+        {
+            if (!edgeA(a)) continue;
+            for (int b = 0; b < int(EB.size()); ++b)
+            {
+                if (!edgeB(b)) continue;
+                builder.visit(edgeEdgeAB, a, b);
+                search.edgeEdge(a, b);
+            }
+        }
+
+        // 3d. Vertex of A on an edge of B
+        for (int ci = 0; ci < nCandA; ++ci)
+        {
+            for (int b = 0; b < int(EB.size()); ++b)
+            {
+                if (!edgeB(b)) continue;
+                builder.visit(vertexEdgeAB, candA[ci], b);
+                search.vertexEdge(candA[ci], b);
+            }
+        }
+
+        // 3e. Vertex of B on an edge of A
+        for (int cj = 0; cj < nCandB; ++cj)
+        {
+            for (int a = 0; a < int(EA.size()); ++a)
+            {
+                if (!edgeA(a)) continue;
+                builder.visit(edgeVertexAB, a, candB[cj]);
+                search.edgeVertex(a, candB[cj]);
+            }
+        }
+
+        // 3f. Vertex-vertex
+        for (int ci = 0; ci < nCandA; ++ci)
+        {
+            for (int cj = 0; cj < nCandB; ++cj)
+            {
+                builder.visit(vertexVertexAB, candA[ci], candB[cj]);
+                search.vertexVertex(candA[ci], candB[cj]);
+            }
         }
     }
 

@@ -44,6 +44,16 @@ namespace Foam
         s.skin = -1;    // the core takes the smallest dilation radius
     }
 
+    // Narrow phase's feature-pair lists; 0: none
+    if (d.found("featureSkin", keyType::LITERAL))
+    {
+        s.featureSkin = nonNegative(d, "featureSkin", 0);
+    }
+    else
+    {
+        s.featureSkin = -1;     // the core takes half the smallest radius
+    }
+
     wordList contactModels;
     for (const std::string& n : ::iceDEM::ContactLaw::names())
     {
@@ -397,7 +407,7 @@ Foam::iceDEMCase::iceDEMCase
         {
             "deltaT", "contactModel", "tangentialModel",
             "tangentialStiffnessRatio", "maxEdgeRadiusRatio",
-            "parallelEdgeSin", "massModel", "neighbourSkin",
+            "parallelEdgeSin", "massModel", "neighbourSkin", "featureSkin",
             "contactCheckVelocity", "contactStepsWarn", "contactStepsMin",
             "materials", "interactions", "walls", "water", "drag", "output",
             "structure", "coupling"
