@@ -28,6 +28,13 @@ constexpr int minParallelLoop = 256;
 //- Loops over bodies: a body's work is small, so a larger cut-off
 constexpr int minParallelBodies = 1000;
 
+//- Half a step of the velocities under the last forces (velocity Verlet)
+inline void halfKick(Body& b, double dt)
+{
+    b.v += 0.5*dt/b.mass*b.force;
+    b.L += 0.5*dt*b.torque;
+}
+
 //- Rotation of the free rigid body by the symplectic splitting about the
 //  principal axes (x, y, z, y, x): each sub-rotation is exact, |L| is kept
 //  exactly and the energy error stays bounded
@@ -604,8 +611,7 @@ void World::integrateFirstHalf(double dt)
     {
         Body& b = bodies_[i];
         if (!b.isFree()) continue;
-        b.v += 0.5*dt/b.mass*b.force;
-        b.L += 0.5*dt*b.torque;
+        halfKick(b, dt);
         b.x += dt*b.v;
         rotateFree(b.q, b.L, b.invInertia, dt);
     }
@@ -619,9 +625,7 @@ void World::integrateSecondHalf(double dt)
     for (int i = 0; i < N; ++i)
     {
         Body& b = bodies_[i];
-        if (!b.isFree()) continue;
-        b.v += 0.5*dt/b.mass*b.force;
-        b.L += 0.5*dt*b.torque;
+        if (b.isFree()) halfKick(b, dt);
     }
 }
 
