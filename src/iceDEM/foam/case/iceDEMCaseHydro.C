@@ -59,7 +59,9 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
         dd,
         {
             "type", "current", "U", "formCoefficient", "skinCoefficient",
-            "subdivision", "bottomCosine"
+            "subdivision", "bottomCosine",
+            // resolved only (resolvedFlowVelocity)
+            "maxWalk", "interpolation", "sampling"
         },
         "drag"
     );

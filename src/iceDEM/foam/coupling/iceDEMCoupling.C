@@ -847,7 +847,8 @@ void Foam::iceDEMCoupling::solve()
         const label perEval =
             st.evaluations ? st.points/st.evaluations : 0;
         Info<< "    resolved drag: " << perEval
-            << " points per DEM evaluation, " << st.outside
+            << " points per sampling (" << st.evaluations << " samplings), "
+            << st.outside
             << " of " << st.points << " outside the mesh (far-field current)";
         if (st.unprepared)
         {

@@ -14,6 +14,9 @@
 #include "PstreamCombineReduceOps.H"
 #include "treeDataCell.H"
 #include "indexedOctree.H"
+#include "fvcGrad.H"
+
+#include <Eigen/Eigenvalues>
 
 #include <chrono>
 #include <cstring>
@@ -24,6 +27,15 @@ namespace
 {
     //- Fewer bodies are sampled on one thread
     constexpr int minParallelBodies = 16;
+
+    //- Tolerance of the walk's point-in-cell test, relative to the cell's
+    //  size (round-off of the face-plane distances)
+    constexpr Foam::scalar relativeWalkTolerance = 1e-10;
+
+    //- Linear fit per floe: point spreads (eigenvalues of the points'
+    //  scatter matrix) below this fraction of the largest count as none
+    //  (round-off of points that lie in one plane)
+    constexpr double relativeSpreadCutoff = 1e-9;
 }
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
@@ -38,7 +50,18 @@ Foam::resolvedFlowVelocity::resolvedFlowVelocity
     UName_(dragDict.getOrDefault<word>("U", "U")),
     current_(dragDict.getOrDefault<vector>("current", Zero)),
     maxWalk_(labelInRange(dragDict, "maxWalk", 1, labelMax, 100)),
+    interpolationType_
+    (
+        dragDict.getOrDefault<word>("interpolation", "cellGradient")
+    ),
     interp_(),
+    gradU_(),
+    samplePerDemStep_(false),
+    sampledThisStep_(false),
+    updated_(false),
+    Ucurrent_(nullptr),
+    world_(nullptr),
+    treeBuilt_(false),
     unprepared_(0)
 {
     if (!mesh_.foundObject<volVectorField>(UName_))
@@ -49,6 +72,38 @@ Foam::resolvedFlowVelocity::resolvedFlowVelocity
             << "    Velocity fields: "
             << flatOutput(mesh_.sortedNames<volVectorField>()) << nl
             << exit(FatalIOError);
+    }
+    if
+    (
+        interpolationType_ != "cellGradient"
+     && !interpolation<vector>::dictionaryConstructorTablePtr_->found
+        (
+            interpolationType_
+        )
+    )
+    {
+        FatalIOErrorInFunction(dragDict)
+            << "Entry 'interpolation': unknown scheme '" << interpolationType_
+            << "'." << nl << "    Allowed: cellGradient "
+            << flatOutput
+               (
+                   interpolation<vector>::dictionaryConstructorTablePtr_
+                  ->sortedToc()
+               )
+            << nl << exit(FatalIOError);
+    }
+    {
+        const word sampling =
+            dragDict.getOrDefault<word>("sampling", "flowStep");
+        if (sampling != "flowStep" && sampling != "demStep")
+        {
+            FatalIOErrorInFunction(dragDict)
+                << "Entry 'sampling': unknown '" << sampling << "'." << nl
+                << "    Allowed: flowStep (once per flow step, a linear fit"
+                << " per floe) or demStep (every DEM force evaluation)" << nl
+                << exit(FatalIOError);
+        }
+        samplePerDemStep_ = (sampling == "demStep");
     }
     if (!(mag(current_) < GREAT))
     {
@@ -88,23 +143,14 @@ Foam::label Foam::resolvedFlowVelocity::exitFace
 {
     const cell& c = mesh_.cells()[celli];
     const vectorField& Cf = mesh_.faceCentres();
-    const vectorField& Sf = mesh_.faceAreas();
     const labelList& own = mesh_.faceOwner();
 
-    // Relative tolerance on the distance to a face plane
-    const scalar tol = 1e-10*cbrt(mesh_.cellVolumes()[celli]);
-
     label best = -1;
-    scalar bestDist = tol;
+    scalar bestDist = cellTolerance_[celli];
     forAll(c, k)
     {
         const label f = c[k];
-        const scalar a = mag(Sf[f]);
-        if (a < VSMALL)
-        {
-            continue;
-        }
-        scalar d = ((p - Cf[f]) & Sf[f])/a;
+        scalar d = (p - Cf[f]) & faceNormals_[f];
         if (own[f] != celli)
         {
             d = -d;
@@ -150,7 +196,38 @@ Foam::label Foam::resolvedFlowVelocity::locate
     {
         return -1;
     }
+    if (!treeBuilt_.load(std::memory_order_acquire))
+    {
+        // Built once per mesh motion by the first thread that needs it;
+        // the others wait here and read it only once it is complete
+        #pragma omp critical(iceDEM_resolvedFlowVelocity_cellTree)
+        {
+            if (!treeBuilt_.load(std::memory_order_relaxed))
+            {
+                (void)mesh_.tetBasePtIs();
+                (void)mesh_.cellTree();
+                treeBuilt_.store(true, std::memory_order_release);
+            }
+        }
+    }
     return mesh_.cellTree().findInside(p);
+}
+
+
+Foam::vector Foam::resolvedFlowVelocity::interpolate
+(
+    const point& p,
+    label celli
+) const
+{
+    if (gradU_)
+    {
+        // Linear reconstruction in the cell
+        return
+            Ucurrent_->primitiveField()[celli]
+          + ((p - mesh_.C()[celli]) & gradU_->primitiveField()[celli]);
+    }
+    return interp_->interpolate(p, celli);
 }
 
 
@@ -159,13 +236,15 @@ void Foam::resolvedFlowVelocity::samplePoints
     const ::iceDEM::World& world,
     const ::iceDEM::Drag& drag,
     int i,
-    std::vector<::iceDEM::Vec3>& points
+    std::vector<::iceDEM::Vec3>& points,
+    std::vector<int>& faces
 ) const
 {
     // The traversal of iceDEM::Drag::bodyDrag (same order, same arithmetic)
     constexpr int capacity = 1 << (2*::iceDEM::DragSettings::maxSubdivision);
 
     points.clear();
+    faces.clear();
 
     const ::iceDEM::Body& b = world.bodies()[i];
     const ::iceDEM::ConvexPolyhedron& P = world.shapeOf(i).outer();
@@ -212,6 +291,7 @@ void Foam::resolvedFlowVelocity::samplePoints
             const int m =
                 ::iceDEM::faceTriangleSamples(face, k, s.subdivision, pts, areas);
             points.insert(points.end(), pts, pts + m);
+            faces.insert(faces.end(), m, f);
         }
     }
 }
@@ -221,6 +301,8 @@ void Foam::resolvedFlowVelocity::samplePoints
 
 void Foam::resolvedFlowVelocity::update()
 {
+    const auto started = std::chrono::steady_clock::now();
+
     // Demand-driven geometry and addressing built here, serially, so the
     // threads of prepare() only read it
     (void)mesh_.cells();
@@ -228,36 +310,68 @@ void Foam::resolvedFlowVelocity::update()
     (void)mesh_.faceAreas();
     (void)mesh_.cellCentres();
     (void)mesh_.cellVolumes();
-    (void)mesh_.tetBasePtIs();
     (void)mesh_.bounds();
-    (void)mesh_.cellTree();
+    (void)mesh_.C();
+    if (interpolationType_ != "cellGradient")
+    {
+        // The tetrahedra of the cells (cellPoint and its kin)
+        (void)mesh_.tetBasePtIs();
+    }
+    // The cell octree (and the tetrahedra it tests with) only when a walk
+    // needs it: building it costs more than a flow step's sampling
+    treeBuilt_ = false;
 
-    interp_.reset(new interpolationCellPoint<vector>(U()));
+    // The walk's face planes: unit normals (zero for a degenerate face, which
+    // then never decides) and a tolerance relative to the cell size
+    const vectorField& Sf = mesh_.faceAreas();
+    faceNormals_.setSize(Sf.size());
+    forAll(Sf, f)
+    {
+        const scalar a = mag(Sf[f]);
+        faceNormals_[f] = a > VSMALL ? Sf[f]/a : Zero;
+    }
+    const scalarField& V = mesh_.cellVolumes();
+    cellTolerance_.setSize(V.size());
+    forAll(V, celli)
+    {
+        cellTolerance_[celli] = relativeWalkTolerance*cbrt(V[celli]);
+    }
+
+    Ucurrent_ = &U();
+    if (interpolationType_ == "cellGradient")
+    {
+        interp_.reset();
+        gradU_.reset(new volTensorField(fvc::grad(U())));
+    }
+    else
+    {
+        gradU_.reset();
+        interp_.reset(interpolation<vector>::New(interpolationType_, U()).ptr());
+    }
+    updated_ = true;
+    sampledThisStep_ = false;
 
     stats_ = statistics();
     unprepared_ = 0;
+    stats_.seconds = std::chrono::duration<double>
+    (
+        std::chrono::steady_clock::now() - started
+    ).count();
 }
 
 
-void Foam::resolvedFlowVelocity::prepare
+void Foam::resolvedFlowVelocity::sampleAll
 (
     const ::iceDEM::World& world,
     const ::iceDEM::Drag& drag
 ) const
 {
-    if (!interp_)
-    {
-        FatalErrorInFunction
-            << "resolved drag: update() was not called before the DEM step"
-            << nl << exit(FatalError);
-    }
-    const auto started = std::chrono::steady_clock::now();
-
     const int N = static_cast<int>(world.bodies().size());
     if (int(hint_.size()) != N)
     {
         hint_.assign(N, -1);
         points_.assign(N, {});
+        pointFaces_.assign(N, {});
         values_.assign(N, {});
         found_.assign(N, {});
         cursor_.assign(N, 0);
@@ -278,7 +392,7 @@ void Foam::resolvedFlowVelocity::prepare
             continue;
         }
         sampled_[i] = 1;
-        samplePoints(world, drag, i, pts);
+        samplePoints(world, drag, i, pts, pointFaces_[i]);
 
         const size_t n = pts.size();
         values_[i].resize(n);
@@ -290,7 +404,7 @@ void Foam::resolvedFlowVelocity::prepare
             const label celli = locate(p, hint);
             if (celli >= 0)
             {
-                const vector u = interp_->interpolate(p, celli);
+                const vector u = interpolate(p, celli);
                 values_[i][k] = ::iceDEM::Vec3(u.x(), u.y(), u.z());
                 found_[i][k] = 1;
                 hint = celli;
@@ -378,6 +492,113 @@ void Foam::resolvedFlowVelocity::prepare
     ++stats_.evaluations;
     stats_.points += total;
     stats_.outside += outside;
+}
+
+
+Foam::resolvedFlowVelocity::linearFit Foam::resolvedFlowVelocity::fit
+(
+    int i,
+    size_t begin,
+    size_t end
+) const
+{
+    linearFit f;
+    const std::vector<::iceDEM::Vec3>& pts = points_[i];
+    const std::vector<::iceDEM::Vec3>& vals = values_[i];
+    if (end <= begin)
+    {
+        return f;
+    }
+    const size_t n = end - begin;
+
+    for (size_t k = begin; k < end; ++k)
+    {
+        f.centre += pts[k];
+        f.mean += vals[k];
+    }
+    f.centre /= double(n);
+    f.mean /= double(n);
+
+    // Least squares: G C = B with C = sum dp dp^T, B = sum du dp^T
+    ::iceDEM::Mat3 C = ::iceDEM::Mat3::Zero();
+    ::iceDEM::Mat3 B = ::iceDEM::Mat3::Zero();
+    for (size_t k = begin; k < end; ++k)
+    {
+        const ::iceDEM::Vec3 dp = pts[k] - f.centre;
+        C += dp*dp.transpose();
+        B += (vals[k] - f.mean)*dp.transpose();
+    }
+
+    // Pseudo-inverse of C: no gradient along directions without spread
+    // (all points in one plane or on one line)
+    const Eigen::SelfAdjointEigenSolver<::iceDEM::Mat3> eig(C);
+    const ::iceDEM::Vec3 lambda = eig.eigenvalues();
+    const double cut = relativeSpreadCutoff*lambda.maxCoeff();
+    ::iceDEM::Mat3 Cinv = ::iceDEM::Mat3::Zero();
+    for (int k = 0; k < 3; ++k)
+    {
+        if (lambda(k) > cut && lambda(k) > 0)
+        {
+            const ::iceDEM::Vec3 e = eig.eigenvectors().col(k);
+            Cinv += (e*e.transpose())/lambda(k);
+        }
+    }
+    f.gradient = B*Cinv;
+    f.valid = true;
+    return f;
+}
+
+
+void Foam::resolvedFlowVelocity::prepare
+(
+    const ::iceDEM::World& world,
+    const ::iceDEM::Drag& drag
+) const
+{
+    if (!updated_)
+    {
+        FatalErrorInFunction
+            << "resolved drag: update() was not called before the DEM step"
+            << nl << exit(FatalError);
+    }
+    if (!samplePerDemStep_ && sampledThisStep_)
+    {
+        return;     // the fits of this flow step hold
+    }
+    const auto started = std::chrono::steady_clock::now();
+
+    sampleAll(world, drag);
+
+    if (!samplePerDemStep_)
+    {
+        const int N = static_cast<int>(world.bodies().size());
+        fits_.resize(N);
+        faceFits_.resize(N);
+        #pragma omp parallel for schedule(dynamic, 16) if(N >= minParallelBodies)
+        for (int i = 0; i < N; ++i)
+        {
+            const size_t n = points_[i].size();
+            fits_[i] = fit(i, 0, n);
+
+            // One fit per wet face (its points are contiguous)
+            std::vector<linearFit>& ff = faceFits_[i];
+            ff.assign(world.shapeOf(i).outer().faces().size(), linearFit());
+            const std::vector<int>& face = pointFaces_[i];
+            for (size_t k = 0; k < n; )
+            {
+                size_t e = k + 1;
+                while (e < n && face[e] == face[k])
+                {
+                    ++e;
+                }
+                ff[face[k]] = fit(i, k, e);
+                k = e;
+            }
+        }
+        world_ = &world;
+        sampledThisStep_ = true;
+    }
+
     stats_.seconds += std::chrono::duration<double>
     (
         std::chrono::steady_clock::now() - started
@@ -404,6 +625,60 @@ void Foam::resolvedFlowVelocity::velocity
         for (int k = 0; k < n; ++k)
         {
             u[k] = far;
+        }
+        return;
+    }
+
+    if (!samplePerDemStep_)
+    {
+        const linearFit* f =
+            size_t(body) < fits_.size() && fits_[body].valid
+          ? &fits_[body] : nullptr;
+        if (f && n > 0)
+        {
+            // The face the points lie on: the face plane (body frame)
+            // nearest to the first point. A face that was dry at the
+            // sampling takes the whole floe's fit.
+            const ::iceDEM::Body& b = world_->bodies()[body];
+            const ::iceDEM::ConvexPolyhedron& P =
+                world_->shapeOf(body).outer();
+            const ::iceDEM::Vec3 q =
+                b.rotation().transpose()*(points[0] - b.x);
+            int best = -1;
+            double bestDist = 0;
+            const int nf = static_cast<int>(P.faces().size());
+            for (int g = 0; g < nf; ++g)
+            {
+                const double d =
+                    std::abs(P.faces()[g].normal.dot(q) - P.faces()[g].offset);
+                if (best < 0 || d < bestDist)
+                {
+                    best = g;
+                    bestDist = d;
+                }
+            }
+            const std::vector<linearFit>& ff = faceFits_[body];
+            if (best >= 0 && size_t(best) < ff.size() && ff[best].valid)
+            {
+                f = &ff[best];
+            }
+        }
+        if (f)
+        {
+            for (int k = 0; k < n; ++k)
+            {
+                u[k] = f->mean + f->gradient*(points[k] - f->centre);
+            }
+        }
+        else
+        {
+            // Dry at the sampling, wet now: the far field until the next
+            // flow step
+            unprepared_ += n;
+            for (int k = 0; k < n; ++k)
+            {
+                u[k] = far;
+            }
         }
         return;
     }
@@ -457,10 +732,10 @@ void Foam::resolvedFlowVelocity::velocity
     for (int k = 0; k < n; ++k)
     {
         const point p(points[k].x(), points[k].y(), points[k].z());
-        const label celli = interp_ ? locate(p, hint) : -1;
+        const label celli = updated_ ? locate(p, hint) : -1;
         if (celli >= 0)
         {
-            const vector v = interp_->interpolate(p, celli);
+            const vector v = interpolate(p, celli);
             u[k] = ::iceDEM::Vec3(v.x(), v.y(), v.z());
         }
         else
