@@ -27,6 +27,12 @@ Description
     If the state of a body becomes non-finite the run stops naming the body
     and the time.
 
+    A case whose constant/iceDEMProperties has a 'structure' (a floating
+    structure from constant/structureDict, moored and moved by OpenFOAM's
+    sixDoFRigidBodyMotion with constant/dynamicMeshDict) runs exactly as
+    iceFloatingFoam -noFlow: the structure's motion and the DEM sub-cycled
+    in every time step, without a mesh and without the fluid force.
+
 Usage
     \b iceDEMFoam [OPTION]
 
@@ -47,6 +53,8 @@ Usage
 
 #include "iceDEMCase.H"
 #include "iceDEMOutput.H"
+#include "IOdictionary.H"
+#include "runWithoutFlow.H"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -100,6 +108,30 @@ int main(int argc, char *argv[])
     #else
     Info<< "iceDEM: built without OpenMP (1 thread)" << nl;
     #endif
+
+    // A moored structure: the same run as iceFloatingFoam -noFlow
+    {
+        const IOdictionary properties
+        (
+            IOobject
+            (
+                "iceDEMProperties",
+                runTime.constant(),
+                runTime,
+                IOobject::MUST_READ,
+                IOobject::NO_WRITE,
+                false
+            )
+        );
+        if (properties.isDict("structure"))
+        {
+            Info<< "iceDEM: 'structure' in constant/iceDEMProperties: the"
+                << " structure moved by sixDoFRigidBodyMotion"
+                << " (constant/dynamicMeshDict) without fluid, as"
+                << " iceFloatingFoam -noFlow" << nl;
+            return runWithoutFlow(runTime);
+        }
+    }
 
     iceDEMCase demCase(runTime);
     demCase.start();

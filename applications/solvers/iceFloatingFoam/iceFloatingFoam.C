@@ -72,6 +72,7 @@ Usage
 #include "structureMotion.H"
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
+#include "runWithoutFlow.H"
 
 #include <memory>
 
@@ -123,13 +124,15 @@ int main(int argc, char *argv[])
 
     if (args.found("noFlow"))
     {
-        #include "noFlow.H"
+        Info<< "\n-noFlow: the structure without fluid" << endl;
+        return runWithoutFlow(runTime);
     }
 
     #include "createDynamicFvMesh.H"
     #include "initContinuityErrs.H"
     #include "createDyMControls.H"
     #include "readGravitationalAcceleration.H"
+    (void)g;    // registered for sixDoFRigidBodyMotion, which looks it up
     #include "createFields.H"
     #include "createUfIfPresent.H"
     #include "CourantNo.H"

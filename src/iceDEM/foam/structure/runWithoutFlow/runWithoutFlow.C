@@ -1,15 +1,25 @@
-// iceFloatingFoam -noFlow: the structure alone, moved by OpenFOAM's
-// sixDoFRigidBodyMotion with the case's constant/dynamicMeshDict (same
-// restraints, constraints and integrator as with the flow), without a mesh
-// and without the fluid force. Gravity from constant/g. Time step and
-// output times from controlDict. Writes postProcessing/hullMotion, the
-// restraints' own outputs and <time>/uniform/sixDoFRigidBodyMotionState.
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
 
+#include "runWithoutFlow.H"
+
+#include "gravityMeshObject.H"
+#include "structureMotion.H"
+#include "hullMotionLog.H"
+#include "iceDEMCoupling.H"
+
+#include <memory>
+
+// * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+int Foam::runWithoutFlow(Time& runTime)
 {
-    #include "readGravitationalAcceleration.H"
+    Info<< "\nReading g" << endl;
+    (void)meshObjects::gravity::New(runTime);
 
-    Info<< "\n-noFlow: structure motion without fluid (no mesh is read)\n"
-        << endl;
+    Info<< "\nStructure motion without fluid (no mesh is read)\n" << endl;
 
     structureMotion body(runTime);
     hullMotionLog motionLog(runTime);
@@ -57,3 +67,5 @@
 
     return 0;
 }
+
+// ************************************************************************* //
