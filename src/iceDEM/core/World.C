@@ -74,6 +74,14 @@ void rotateFree(Quat& q, const Vec3& L, const Vec3& invI, double dt)
 } // anonymous namespace
 
 
+struct World::PairScratch
+{
+    std::vector<StoredContact> contacts;
+    std::vector<StoredFeatureList> lists;
+    std::vector<std::uint32_t> entries;
+};
+
+
 World::World(const WorldSettings& settings)
 :
     settings_(settings),
@@ -363,24 +371,41 @@ void World::initialise(bool restart)
 
     if (restart)
     {
-        // Contact histories of the saved state into their pairs
+        // Contact histories of the saved state into their pairs: counts,
+        // then the pool in pair order (a pair's records in saved order)
         auto& pairs = nlist_->pairs();
-        for (const ContactRecord& r : pendingRecords_)
+        std::vector<int> pairOf(pendingRecords_.size());
+        for (std::size_t r = 0; r < pendingRecords_.size(); ++r)
         {
+            const ContactRecord& rec = pendingRecords_[r];
             auto it = std::find_if
             (
                 pairs.begin(), pairs.end(),
-                [&](const ContactPair& p) { return p.i == r.i && p.j == r.j; }
+                [&](const ContactPair& p) { return p.i == rec.i && p.j == rec.j; }
             );
             if (it == pairs.end() || it->nContacts >= maxContactsPerPair)
             {
                 throw Error("a saved contact does not match the bodies' positions", "contacts");
             }
-            StoredContact& c = it->contacts[it->nContacts++];
-            c = StoredContact();
-            c.featureI = r.featureI;
-            c.featureJ = r.featureJ;
-            c.xi = r.xi;
+            ++it->nContacts;
+            pairOf[r] = static_cast<int>(it - pairs.begin());
+        }
+        int first = 0;
+        std::vector<int> fill(pairs.size());
+        for (std::size_t k = 0; k < pairs.size(); ++k)
+        {
+            pairs[k].firstContact = first;
+            fill[k] = first;
+            first += pairs[k].nContacts;
+        }
+        auto& pool = nlist_->contacts();
+        pool.assign(first, StoredContact());
+        for (std::size_t r = 0; r < pendingRecords_.size(); ++r)
+        {
+            StoredContact& c = pool[fill[pairOf[r]]++];
+            c.featureI = pendingRecords_[r].featureI;
+            c.featureJ = pendingRecords_[r].featureJ;
+            c.xi = pendingRecords_[r].xi;
         }
         pendingRecords_.clear();
         // Contact geometry and counts for output, without touching the springs
@@ -390,9 +415,9 @@ void World::initialise(bool restart)
             F[i] = bodies_[i].force;
             T[i] = bodies_[i].torque;
         }
-        std::vector<ContactPair> saved = nlist_->pairs();
+        const NeighbourList saved = *nlist_;
         computeForces(0);
-        nlist_->pairs() = saved;
+        *nlist_ = saved;
         for (std::size_t i = 0; i < bodies_.size(); ++i)
         {
             bodies_[i].force = F[i];
@@ -471,22 +496,62 @@ ContactResult World::contactForce
 
 void World::computeForces(double dtTangential)
 {
-    auto& pairs = nlist_->pairs();
+    NeighbourList& nl = *nlist_;
+    auto& pairs = nl.pairs();
     const int nPairs = static_cast<int>(pairs.size());
+
+    #ifdef _OPENMP
+    const int maxThreads = omp_get_max_threads();
+    #else
+    const int maxThreads = 1;
+    #endif
+    if (int(scratch_.size()) < maxThreads) scratch_.resize(maxThreads);
+    staged_.resize(nPairs);
 
     #pragma omp parallel if(nPairs >= minParallelLoop)
     {
+        #ifdef _OPENMP
+        PairScratch& S = scratch_[omp_get_thread_num()];
+        const int thread = omp_get_thread_num();
+        #else
+        PairScratch& S = scratch_[0];
+        const int thread = 0;
+        #endif
+        S.contacts.clear();
+        S.lists.clear();
+        S.entries.clear();
+
         FoundContact found[maxContactsPerPair];
-        StoredContact previous[maxContactsPerPair];
+        std::uint32_t entries[FeaturePairList::capacity];
+        // The pools of the last evaluation, read only in this loop
+        const StoredContact* oldContacts = nl.contacts().data();
+        const StoredFeatureList* oldLists = nl.featureLists().data();
+        const std::uint32_t* oldEntries = nl.listEntries().data();
 
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
-            const int nFound = findPairContacts(p, p.axis, found, &p.features);
 
+            FeaturePairList list;
+            list.entries = entries;
+            if (p.featureList >= 0)
+            {
+                const StoredFeatureList& L = oldLists[p.featureList];
+                list.count = L.count;
+                std::copy(oldEntries + L.firstEntry, oldEntries + L.firstEntry + L.count, entries);
+                list.xA = L.xA;
+                list.xB = L.xB;
+                list.qA = L.qA;
+                list.qB = L.qB;
+            }
+            const int nFound =
+                findPairContacts(p, p.axis, found, p.isWall() ? nullptr : &list);
+
+            const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
-            std::copy(p.contacts, p.contacts + nPrev, previous);
+            std::array<int, 3>& st = staged_[k];
+            st = {thread, static_cast<int>(S.contacts.size()), -1};
 
             p.nContacts = 0;
             p.forceOnJ.setZero();
@@ -498,7 +563,7 @@ void World::computeForces(double dtTangential)
             for (int c = 0; c < nFound; ++c)
             {
                 const FoundContact& fc = found[c];
-                StoredContact& sc = p.contacts[p.nContacts++];
+                StoredContact sc;
                 sc.featureI = fc.featureA;
                 sc.featureJ = fc.featureB;
                 sc.xi.setZero();
@@ -511,6 +576,8 @@ void World::computeForces(double dtTangential)
                     }
                 }
                 const ContactResult r = contactForce(p, fc.g, sc.xi, dtTangential);
+                S.contacts.push_back(sc);
+                ++p.nContacts;
 
                 const Vec3& x = fc.g.point;
                 p.forceOnJ += r.forceOnJ;
@@ -519,6 +586,58 @@ void World::computeForces(double dtTangential)
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
+
+            if (list.count >= 0)
+            {
+                st[2] = static_cast<int>(S.lists.size());
+                StoredFeatureList L;
+                L.xA = list.xA;
+                L.xB = list.xB;
+                L.qA = list.qA;
+                L.qB = list.qB;
+                L.count = list.count;
+                L.firstEntry = static_cast<int>(S.entries.size());
+                S.lists.push_back(L);
+                S.entries.insert(S.entries.end(), entries, entries + list.count);
+            }
+        }
+
+        // The new pools in pair order (independent of the thread count)
+        #pragma omp single
+        {
+            int nContacts = 0, nLists = 0, nEntries = 0;
+            for (int k = 0; k < nPairs; ++k)
+            {
+                ContactPair& p = pairs[k];
+                p.firstContact = nContacts;
+                nContacts += p.nContacts;
+                const int l = staged_[k][2];
+                p.featureList = l >= 0 ? nLists++ : -1;
+                if (l >= 0) nEntries += scratch_[staged_[k][0]].lists[l].count;
+            }
+            nl.contacts().resize(nContacts);
+            nl.featureLists().resize(nLists);
+            nl.listEntries().resize(nEntries);
+            nEntries = 0;
+            for (int k = 0; k < nPairs; ++k)
+            {
+                const ContactPair& p = pairs[k];
+                if (p.featureList < 0) continue;
+                StoredFeatureList& L = nl.featureLists()[p.featureList];
+                L = scratch_[staged_[k][0]].lists[staged_[k][2]];
+                const std::uint32_t* from = scratch_[staged_[k][0]].entries.data() + L.firstEntry;
+                std::copy(from, from + L.count, nl.listEntries().data() + nEntries);
+                L.firstEntry = nEntries;
+                nEntries += L.count;
+            }
+        }
+
+        #pragma omp for schedule(static)
+        for (int k = 0; k < nPairs; ++k)
+        {
+            const ContactPair& p = pairs[k];
+            const StoredContact* from = scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
+            std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
         }
     }
 
@@ -711,6 +830,20 @@ int World::contactPairCount() const
 }
 
 
+std::size_t World::contactStateBytes() const
+{
+    std::size_t n = nlist_ ? nlist_->bytes() : 0;
+    n += staged_.capacity()*sizeof(staged_[0]);
+    for (const PairScratch& S : scratch_)
+    {
+        n += S.contacts.capacity()*sizeof(StoredContact)
+           + S.lists.capacity()*sizeof(StoredFeatureList)
+           + S.entries.capacity()*sizeof(std::uint32_t);
+    }
+    return n;
+}
+
+
 long World::neighbourListBuilds() const
 {
     return nlist_ ? nlist_->builds() : 0;
@@ -737,12 +870,10 @@ std::vector<ContactRecord> World::contactRecords() const
     if (!nlist_) return pendingRecords_;
     for (const ContactPair& p : nlist_->pairs())
     {
+        const StoredContact* sc = nlist_->contactsOf(p);
         for (int c = 0; c < p.nContacts; ++c)
         {
-            records.push_back
-            (
-                {p.i, p.j, p.contacts[c].featureI, p.contacts[c].featureJ, p.contacts[c].xi}
-            );
+            records.push_back({p.i, p.j, sc[c].featureI, sc[c].featureJ, sc[c].xi});
         }
     }
     return records;
@@ -770,11 +901,12 @@ std::vector<World::ContactInfo> World::contacts() const
         for (int c = 0; c < n; ++c)
         {
             Vec3 xi = Vec3::Zero();
+            const StoredContact* sc = nlist_->contactsOf(p);
             for (int m = 0; m < p.nContacts; ++m)
             {
-                if (p.contacts[m].featureI == found[c].featureA && p.contacts[m].featureJ == found[c].featureB)
+                if (sc[m].featureI == found[c].featureA && sc[m].featureJ == found[c].featureB)
                 {
-                    xi = p.contacts[m].xi;
+                    xi = sc[m].xi;
                 }
             }
             const ContactResult r = contactForce(p, found[c].g, xi, 0);

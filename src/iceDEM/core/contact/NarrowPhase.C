@@ -34,10 +34,12 @@ inline bool inVertexCone
 )
 {
     const ConvexPolyhedron& P = S.core();
-    const auto& dirs = S.vertexEdgeDirections();
     for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
     {
-        if (nBody.dot(dirs[k]) > tol)
+        // n . (+-t) = +-(n . t) bit for bit
+        const double lean =
+            S.vertexEdgeSign(v, k)*nBody.dot(S.edgeDirection(P.vertexEdges()[k]));
+        if (lean > tol)
         {
             return false;
         }
@@ -60,13 +62,14 @@ inline bool inVertexConeForEdge
 )
 {
     const ConvexPolyhedron& P = S.core();
-    const auto& dirs = S.vertexEdgeDirections();
     for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
     {
-        const double lean = nBody.dot(dirs[k]);
+        const Vec3& d = S.edgeDirection(P.vertexEdges()[k]);
+        const double lean = S.vertexEdgeSign(v, k)*nBody.dot(d);
         if (lean > coneTolerance)
         {
-            if (lean > parallelSin || dirs[k].cross(tBody).norm() >= parallelSin)
+            // |(+-d) x t| = |d x t|
+            if (lean > parallelSin || d.cross(tBody).norm() >= parallelSin)
             {
                 return false;
             }
