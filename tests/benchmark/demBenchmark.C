@@ -630,38 +630,32 @@ RunResult runOnce
         r.peakKB = procStatusKB("VmHWM");
 
         // Breakdown: what the core stores per body and per candidate pair
+        // (vector capacities as the core reports them; allocator overhead,
+        // about 16 B per heap block, excluded)
         const double skin = o.skin > 0 ? o.skin : kRadius;
         const long pairs = estimateCandidatePairs(*world, skin);
         double shapeBytes = 0;
         for (const DilatedShape& S : world->shapes())
         {
-            const ConvexPolyhedron& P = S.core();
-            const double nv = P.vertices().size();
-            const double ne = P.edges().size();
-            const double nf = P.faces().size();
-            const double nfv = P.faceVertices().size();
-            // core and outer polyhedra (vertices, edges, edge faces, faces,
-            // face loops, vertex-edge CSR) and the precomputed directions
-            const double poly =
-                nv*24 + ne*8 + ne*8 + nf*sizeof(P.faces()[0]) + nfv*4
-              + (nv + 1)*4 + 2*ne*4;
-            // 18 heap blocks of ~16 B allocator overhead each
-            shapeBytes += sizeof(DilatedShape) + 2*poly
-                + ne*24 + ne*48 + 2*ne*24 + nfv*24 + 18*16;
+            shapeBytes += sizeof(DilatedShape) + S.heapBytes();
         }
         const double n = world->bodies().size();
+        const double nF = f.floes.size();
+        const double nv = world->shapes()[0].core().vertices().size();
         std::printf
         (
             "# memory N=%zu rss_per_floe_B=%.0f peak_rss_MB=%.1f"
-            " | per floe: Body %zu B, shape ~%.0f B, world vertices %.0f B;"
-            " candidate pairs ~%.2f per floe x sizeof(ContactPair) %zu B = %.0f B"
-            " (StoredContact %zu B x %d inline)\n",
+            " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core and"
+            " outer polyhedra, edge directions, face edges), world vertices,"
+            " rotation and omega %.0f B; contact state %.0f B per floe"
+            " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"
+            " StoredContact %zu B per contact, feature lists %zu B + 4 B per entry)\n",
             f.floes.size(), r.rssPerFloe, r.peakKB/1024.0,
-            sizeof(Body), shapeBytes/n,
-            24.0*world->shapes()[0].core().vertices().size(),
-            pairs/double(f.floes.size()), sizeof(ContactPair),
-            pairs/double(f.floes.size())*sizeof(ContactPair),
-            sizeof(StoredContact), World::maxContactsPerPair
+            sizeof(Body), shapeBytes/n, sizeof(DilatedShape),
+            24.0*nv + sizeof(Mat3) + sizeof(Vec3),
+            world->contactStateBytes()/nF,
+            pairs/nF, sizeof(ContactPair),
+            sizeof(StoredContact), sizeof(StoredFeatureList)
         );
     }
     return r;
