@@ -48,6 +48,8 @@ Usage
       -push P                 compacting: push per unit area [Pa] (default 50)
       -skin S                 neighbour-list skin [m] (default: the core's,
                               the dilation radius)
+      -featureSkin S          skin of the feature-pair lists [m] (default:
+                              the core's, r/2; 0: no lists)
       -lloyd K                Lloyd iterations (default 5)
       -seed K                 field and velocity seed (default 2026)
       -cache DIR              where the compacted state is kept (default .)
@@ -203,6 +205,7 @@ struct Options
     double compactTime = 30;
     double push = 50;
     double skin = -1;
+    double featureSkin = -1;
     int lloyd = 5;
     std::uint64_t seed = 2026;
     std::string cache = ".";
@@ -250,6 +253,7 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-compactTime") o.compactTime = std::atof(value().c_str());
         else if (opt == "-push") o.push = std::atof(value().c_str());
         else if (opt == "-skin") o.skin = std::atof(value().c_str());
+        else if (opt == "-featureSkin") o.featureSkin = std::atof(value().c_str());
         else if (opt == "-lloyd") o.lloyd = std::atoi(value().c_str());
         else if (opt == "-seed") o.seed = std::strtoull(value().c_str(), nullptr, 10);
         else if (opt == "-cache") o.cache = value();
@@ -412,6 +416,7 @@ std::unique_ptr<World> buildWorld
     ws.timeStep = 1e-3;
     ws.gravity = Vec3::Zero();
     ws.skin = o.skin;
+    ws.featureSkin = o.featureSkin;
     auto world = std::make_unique<World>(ws);
 
     Material ice;

@@ -237,7 +237,7 @@ void World::removeBodies(const std::vector<bool>& remove)
 }
 
 
-void World::updateWorldVertices()
+void World::resizeBodyFrames()
 {
     const int N = static_cast<int>(bodies_.size());
     if (int(vertexOffset_.size()) != N + 1)
@@ -252,19 +252,32 @@ void World::updateWorldVertices()
         rotations_.resize(N);
         omegas_.resize(N);
     }
+}
+
+
+void World::updateBodyFrame(int i)
+{
+    const Body& b = bodies_[i];
+    const Mat3 R = b.rotation();
+    rotations_[i] = R;
+    omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
+    const auto& V = shapeOf(i).core().vertices();
+    Vec3* w = worldVertices_.data() + vertexOffset_[i];
+    for (std::size_t k = 0; k < V.size(); ++k)
+    {
+        w[k] = R*V[k] + b.x;
+    }
+}
+
+
+void World::updateWorldVertices()
+{
+    resizeBodyFrames();
+    const int N = static_cast<int>(bodies_.size());
     #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
-        const Body& b = bodies_[i];
-        const Mat3 R = b.rotation();
-        rotations_[i] = R;
-        omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
-        const auto& V = shapeOf(i).core().vertices();
-        Vec3* w = worldVertices_.data() + vertexOffset_[i];
-        for (std::size_t k = 0; k < V.size(); ++k)
-        {
-            w[k] = R*V[k] + b.x;
-        }
+        updateBodyFrame(i);
     }
 }
 
@@ -494,21 +507,26 @@ ContactResult World::contactForce
 }
 
 
-void World::computeForces(double dtTangential)
+void World::preparePairs()
 {
-    NeighbourList& nl = *nlist_;
-    auto& pairs = nl.pairs();
-    const int nPairs = static_cast<int>(pairs.size());
-
     #ifdef _OPENMP
     const int maxThreads = omp_get_max_threads();
     #else
     const int maxThreads = 1;
     #endif
     if (int(scratch_.size()) < maxThreads) scratch_.resize(maxThreads);
-    staged_.resize(nPairs);
+    staged_.resize(nlist_->pairs().size());
+}
 
-    #pragma omp parallel if(nPairs >= minParallelLoop)
+
+void World::pairForces(double dtTangential)
+{
+    NeighbourList& nl = *nlist_;
+    auto& pairs = nl.pairs();
+    const int nPairs = static_cast<int>(pairs.size());
+
+    // Orphaned work-sharing: called inside a parallel region (or by one
+    // thread); staged_ and scratch_ are sized by preparePairs
     {
         #ifdef _OPENMP
         PairScratch& S = scratch_[omp_get_thread_num()];
@@ -615,6 +633,9 @@ void World::computeForces(double dtTangential)
                 p.featureList = l >= 0 ? nLists++ : -1;
                 if (l >= 0) nEntries += scratch_[staged_[k][0]].lists[l].count;
             }
+            contactCount_ = nContacts;
+            elasticEnergy_ = 0;
+            for (const ContactPair& p : pairs) elasticEnergy_ += p.elasticEnergy;
             nl.contacts().resize(nContacts);
             nl.featureLists().resize(nLists);
             nl.listEntries().resize(nEntries);
@@ -640,6 +661,13 @@ void World::computeForces(double dtTangential)
             std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
         }
     }
+
+}
+
+
+void World::bodyForces(double dtKick)
+{
+    const auto& pairs = nlist_->pairs();
 
     // Per-body sums in a fixed order
     const int N = static_cast<int>(bodies_.size());
@@ -708,44 +736,23 @@ void World::computeForces(double dtTangential)
             if (body.isFree())
             {
                 body.force += body.mass*settings_.gravity;
+                // Second half kick of a step (velocity Verlet)
+                if (dtKick > 0) halfKick(body, dtKick);
             }
         }
     }
-
-    contactCount_ = 0;
-    elasticEnergy_ = 0;
-    for (const ContactPair& p : pairs)
-    {
-        contactCount_ += p.nContacts;
-        elasticEnergy_ += p.elasticEnergy;
-    }
 }
 
 
-void World::integrateFirstHalf(double dt)
+void World::computeForces(double dtTangential)
 {
-    const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
-    for (int i = 0; i < N; ++i)
+    preparePairs();
+    const int nPairs = static_cast<int>(nlist_->pairs().size());
+    #pragma omp parallel if(nPairs >= minParallelLoop)
     {
-        Body& b = bodies_[i];
-        if (!b.isFree()) continue;
-        halfKick(b, dt);
-        b.x += dt*b.v;
-        rotateFree(b.q, b.L, b.invInertia, dt);
+        pairForces(dtTangential);
     }
-}
-
-
-void World::integrateSecondHalf(double dt)
-{
-    const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
-    for (int i = 0; i < N; ++i)
-    {
-        Body& b = bodies_[i];
-        if (b.isFree()) halfKick(b, dt);
-    }
+    bodyForces(0);
 }
 
 
@@ -755,14 +762,44 @@ void World::stepBy(double dt)
     {
         initialise();
     }
-    integrateFirstHalf(dt);
-    updateWorldVertices();
-    if (nlist_->needsRebuild(bodies_))
+    resizeBodyFrames();
+    preparePairs();
+    const int N = static_cast<int>(bodies_.size());
+
+    // One team for the first half step, the world frames, the neighbour
+    // list and the contacts (fewer fork-joins and barriers: on a loaded
+    // machine each waits for the slowest thread)
+    #pragma omp parallel if(N >= minParallelBodies)
     {
-        nlist_->build(*this);
+        // First half kick, drift, rotation; then the body's world frame
+        #pragma omp for schedule(static)
+        for (int i = 0; i < N; ++i)
+        {
+            Body& b = bodies_[i];
+            if (b.isFree())
+            {
+                halfKick(b, dt);
+                b.x += dt*b.v;
+                rotateFree(b.q, b.L, b.invInertia, dt);
+            }
+            updateBodyFrame(i);
+        }
+
+        #pragma omp single
+        {
+            if (nlist_->needsRebuild(bodies_))
+            {
+                nlist_->build(*this);
+                preparePairs();
+            }
+        }
+
+        pairForces(dt);
     }
-    computeForces(dt);
-    integrateSecondHalf(dt);
+
+    // Body sums, body-force models (their serial preparation first) and
+    // the second half kick
+    bodyForces(dt);
     time_ += dt;
     ++step_;
 }
