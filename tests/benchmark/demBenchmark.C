@@ -70,6 +70,7 @@ Usage
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -116,6 +117,15 @@ public:
 
     double uniform(double a, double b) { return a + (b - a)*uniform01(); }
 };
+
+
+//- CPU time of the process (all threads) [s]
+double processCpuSeconds()
+{
+    timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9*ts.tv_nsec;
+}
 
 
 //- A field of /proc/self/status in kB (VmRSS, VmHWM)
@@ -547,6 +557,10 @@ bool readSnapshot(const std::string& file, Snapshot& s)
 struct RunResult
 {
     double wall = 0;                //!< seconds in world.step()
+    //- CPU seconds of the process in world.step() (all threads; with
+    //  OMP_WAIT_POLICY=PASSIVE waiting threads sleep): on a loaded machine
+    //  a steadier measure of the work than the wall time
+    double cpu = 0;
     double contactsPerStep = 0;     //!< mean contactPairCount()
     std::uint64_t hash = 0;
     long rebuilds = 0;
@@ -600,6 +614,7 @@ RunResult runOnce
 
     long contactSum = 0;
     double wall = 0;
+    double cpu = 0;
 #if HAVE_CALLGRIND
     if (o.callgrind)
     {
@@ -609,10 +624,12 @@ RunResult runOnce
 #endif
     for (int s = 0; s < steps; ++s)
     {
+        const double c0 = processCpuSeconds();
         const auto t0 = std::chrono::steady_clock::now();
         world->step();
         const auto t1 = std::chrono::steady_clock::now();
         wall += std::chrono::duration<double>(t1 - t0).count();
+        cpu += processCpuSeconds() - c0;
         contactSum += world->contactPairCount();
     }
 #if HAVE_CALLGRIND
@@ -625,6 +642,7 @@ RunResult runOnce
     world->checkFinite();
 
     r.wall = wall;
+    r.cpu = cpu;
     r.contactsPerStep = steps > 0 ? double(contactSum)/steps : 0;
     r.hash = stateHash(*world);
     r.rebuilds = world->neighbourListBuilds() - buildsBefore;
@@ -688,13 +706,14 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
     for (int t : o.threads)
     {
         omp_set_num_threads(t);
-        std::vector<double> walls, contacts;
+        std::vector<double> walls, cpus, contacts;
         std::uint64_t hash = 0;
         long rebuilds = 0;
         for (int rep = 0; rep < o.reps; ++rep)
         {
             const RunResult r = runOnce(f, o, snap, steps, memory && first && rep == 0);
             walls.push_back(r.wall);
+            cpus.push_back(r.cpu);
             contacts.push_back(r.contactsPerStep);
             if (rep == 0)
             {
@@ -726,6 +745,8 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
         );
         std::printf("#   field=%s reps wall_s:", f.name.c_str());
         for (double x : walls) std::printf(" %.4g", x);
+        std::printf("  cpu_s:");
+        for (double x : cpus) std::printf(" %.4g", x);
         std::printf("  neighbour_list_builds=%ld  state_hash=%016llx\n",
             rebuilds, static_cast<unsigned long long>(hash));
         std::fflush(stdout);

@@ -651,13 +651,10 @@ int findContacts
         useList = moved < s.featureSkin - eta;
     }
 
-    // With a valid list the separating-axis test is skipped: the list holds
-    // every feature pair that can touch, so separated cores give no contact
-    // through it either (only the axis hint differs, see NarrowPhase.H)
     double bestGap = -std::numeric_limits<double>::max();
     Vec3 best = axes[0];
     double bestMaxA = 0, bestMinB = 0;
-    for (int k = 0; k < (useList ? 0 : nAxes); ++k)
+    for (int k = 0; k < nAxes; ++k)
     {
         const Vec3& a = axes[k];
         double maxA = -std::numeric_limits<double>::max();
