@@ -515,6 +515,14 @@ void World::preparePairs()
     const int maxThreads = 1;
     #endif
     if (int(scratch_.size()) < maxThreads) scratch_.resize(maxThreads);
+    // All cleared here: the pools are sized from their sums, and a thread
+    // that is not in the next team must leave nothing behind
+    for (PairScratch& S : scratch_)
+    {
+        S.contacts.clear();
+        S.lists.clear();
+        S.entries.clear();
+    }
     staged_.resize(nlist_->pairs().size());
 }
 
@@ -535,9 +543,6 @@ void World::pairForces(double dtTangential)
         PairScratch& S = scratch_[0];
         const int thread = 0;
         #endif
-        S.contacts.clear();
-        S.lists.clear();
-        S.entries.clear();
 
         FoundContact found[maxContactsPerPair];
         std::uint32_t entries[FeaturePairList::capacity];
@@ -623,33 +628,35 @@ void World::pairForces(double dtTangential)
         // The new pools in pair order (independent of the thread count)
         #pragma omp single
         {
-            int nContacts = 0, nLists = 0, nEntries = 0;
-            for (int k = 0; k < nPairs; ++k)
+            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
+            for (const PairScratch& T : scratch_)
             {
-                ContactPair& p = pairs[k];
-                p.firstContact = nContacts;
-                nContacts += p.nContacts;
-                const int l = staged_[k][2];
-                p.featureList = l >= 0 ? nLists++ : -1;
-                if (l >= 0) nEntries += scratch_[staged_[k][0]].lists[l].count;
+                nContacts += T.contacts.size();
+                nLists += T.lists.size();
+                nEntries += T.entries.size();
             }
-            contactCount_ = nContacts;
-            elasticEnergy_ = 0;
-            for (const ContactPair& p : pairs) elasticEnergy_ += p.elasticEnergy;
             nl.contacts().resize(nContacts);
             nl.featureLists().resize(nLists);
             nl.listEntries().resize(nEntries);
-            nEntries = 0;
+            contactCount_ = 0;
+            elasticEnergy_ = 0;
+            int lists = 0, entries = 0;
             for (int k = 0; k < nPairs; ++k)
             {
-                const ContactPair& p = pairs[k];
-                if (p.featureList < 0) continue;
+                ContactPair& p = pairs[k];
+                p.firstContact = contactCount_;
+                contactCount_ += p.nContacts;
+                elasticEnergy_ += p.elasticEnergy;
+                const int l = staged_[k][2];
+                p.featureList = l >= 0 ? lists++ : -1;
+                if (l < 0) continue;
+                const PairScratch& T = scratch_[staged_[k][0]];
                 StoredFeatureList& L = nl.featureLists()[p.featureList];
-                L = scratch_[staged_[k][0]].lists[staged_[k][2]];
-                const std::uint32_t* from = scratch_[staged_[k][0]].entries.data() + L.firstEntry;
-                std::copy(from, from + L.count, nl.listEntries().data() + nEntries);
-                L.firstEntry = nEntries;
-                nEntries += L.count;
+                L = T.lists[l];
+                const std::uint32_t* from = T.entries.data() + L.firstEntry;
+                std::copy(from, from + L.count, nl.listEntries().data() + entries);
+                L.firstEntry = entries;
+                entries += L.count;
             }
         }
 
