@@ -668,7 +668,6 @@ void World::pairForces(double dtTangential)
             std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
         }
     }
-
 }
 
 
