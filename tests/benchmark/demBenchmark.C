@@ -48,6 +48,8 @@ Usage
       -push P                 compacting: push per unit area [Pa] (default 50)
       -skin S                 neighbour-list skin [m] (default: the core's,
                               the dilation radius)
+      -featureSkin S          skin of the feature-pair lists [m] (default:
+                              the core's, r/2; 0: no lists)
       -lloyd K                Lloyd iterations (default 5)
       -seed K                 field and velocity seed (default 2026)
       -cache DIR              where the compacted state is kept (default .)
@@ -68,6 +70,7 @@ Usage
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -114,6 +117,15 @@ public:
 
     double uniform(double a, double b) { return a + (b - a)*uniform01(); }
 };
+
+
+//- CPU time of the process (all threads) [s]
+double processCpuSeconds()
+{
+    timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9*ts.tv_nsec;
+}
 
 
 //- A field of /proc/self/status in kB (VmRSS, VmHWM)
@@ -203,6 +215,7 @@ struct Options
     double compactTime = 30;
     double push = 50;
     double skin = -1;
+    double featureSkin = -1;
     int lloyd = 5;
     std::uint64_t seed = 2026;
     std::string cache = ".";
@@ -250,6 +263,7 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-compactTime") o.compactTime = std::atof(value().c_str());
         else if (opt == "-push") o.push = std::atof(value().c_str());
         else if (opt == "-skin") o.skin = std::atof(value().c_str());
+        else if (opt == "-featureSkin") o.featureSkin = std::atof(value().c_str());
         else if (opt == "-lloyd") o.lloyd = std::atoi(value().c_str());
         else if (opt == "-seed") o.seed = std::strtoull(value().c_str(), nullptr, 10);
         else if (opt == "-cache") o.cache = value();
@@ -412,6 +426,7 @@ std::unique_ptr<World> buildWorld
     ws.timeStep = 1e-3;
     ws.gravity = Vec3::Zero();
     ws.skin = o.skin;
+    ws.featureSkin = o.featureSkin;
     auto world = std::make_unique<World>(ws);
 
     Material ice;
@@ -542,6 +557,10 @@ bool readSnapshot(const std::string& file, Snapshot& s)
 struct RunResult
 {
     double wall = 0;                //!< seconds in world.step()
+    //- CPU seconds of the process in world.step() (all threads; with
+    //  OMP_WAIT_POLICY=PASSIVE waiting threads sleep): on a loaded machine
+    //  a steadier measure of the work than the wall time
+    double cpu = 0;
     double contactsPerStep = 0;     //!< mean contactPairCount()
     std::uint64_t hash = 0;
     long rebuilds = 0;
@@ -595,6 +614,7 @@ RunResult runOnce
 
     long contactSum = 0;
     double wall = 0;
+    double cpu = 0;
 #if HAVE_CALLGRIND
     if (o.callgrind)
     {
@@ -604,10 +624,12 @@ RunResult runOnce
 #endif
     for (int s = 0; s < steps; ++s)
     {
+        const double c0 = processCpuSeconds();
         const auto t0 = std::chrono::steady_clock::now();
         world->step();
         const auto t1 = std::chrono::steady_clock::now();
         wall += std::chrono::duration<double>(t1 - t0).count();
+        cpu += processCpuSeconds() - c0;
         contactSum += world->contactPairCount();
     }
 #if HAVE_CALLGRIND
@@ -620,6 +642,7 @@ RunResult runOnce
     world->checkFinite();
 
     r.wall = wall;
+    r.cpu = cpu;
     r.contactsPerStep = steps > 0 ? double(contactSum)/steps : 0;
     r.hash = stateHash(*world);
     r.rebuilds = world->neighbourListBuilds() - buildsBefore;
@@ -630,38 +653,32 @@ RunResult runOnce
         r.peakKB = procStatusKB("VmHWM");
 
         // Breakdown: what the core stores per body and per candidate pair
+        // (vector capacities as the core reports them; allocator overhead,
+        // about 16 B per heap block, excluded)
         const double skin = o.skin > 0 ? o.skin : kRadius;
         const long pairs = estimateCandidatePairs(*world, skin);
         double shapeBytes = 0;
         for (const DilatedShape& S : world->shapes())
         {
-            const ConvexPolyhedron& P = S.core();
-            const double nv = P.vertices().size();
-            const double ne = P.edges().size();
-            const double nf = P.faces().size();
-            const double nfv = P.faceVertices().size();
-            // core and outer polyhedra (vertices, edges, edge faces, faces,
-            // face loops, vertex-edge CSR) and the precomputed directions
-            const double poly =
-                nv*24 + ne*8 + ne*8 + nf*sizeof(P.faces()[0]) + nfv*4
-              + (nv + 1)*4 + 2*ne*4;
-            // 18 heap blocks of ~16 B allocator overhead each
-            shapeBytes += sizeof(DilatedShape) + 2*poly
-                + ne*24 + ne*48 + 2*ne*24 + nfv*24 + 18*16;
+            shapeBytes += sizeof(DilatedShape) + S.heapBytes();
         }
         const double n = world->bodies().size();
+        const double nF = f.floes.size();
+        const double nv = world->shapes()[0].core().vertices().size();
         std::printf
         (
             "# memory N=%zu rss_per_floe_B=%.0f peak_rss_MB=%.1f"
-            " | per floe: Body %zu B, shape ~%.0f B, world vertices %.0f B;"
-            " candidate pairs ~%.2f per floe x sizeof(ContactPair) %zu B = %.0f B"
-            " (StoredContact %zu B x %d inline)\n",
+            " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core and"
+            " outer polyhedra, edge directions, face edges), world vertices,"
+            " rotation and omega %.0f B; contact state %.0f B per floe"
+            " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"
+            " StoredContact %zu B per contact, feature lists %zu B + 4 B per entry)\n",
             f.floes.size(), r.rssPerFloe, r.peakKB/1024.0,
-            sizeof(Body), shapeBytes/n,
-            24.0*world->shapes()[0].core().vertices().size(),
-            pairs/double(f.floes.size()), sizeof(ContactPair),
-            pairs/double(f.floes.size())*sizeof(ContactPair),
-            sizeof(StoredContact), World::maxContactsPerPair
+            sizeof(Body), shapeBytes/n, sizeof(DilatedShape),
+            24.0*nv + sizeof(Mat3) + sizeof(Vec3),
+            world->contactStateBytes()/nF,
+            pairs/nF, sizeof(ContactPair),
+            sizeof(StoredContact), sizeof(StoredFeatureList)
         );
     }
     return r;
@@ -689,13 +706,14 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
     for (int t : o.threads)
     {
         omp_set_num_threads(t);
-        std::vector<double> walls, contacts;
+        std::vector<double> walls, cpus, contacts;
         std::uint64_t hash = 0;
         long rebuilds = 0;
         for (int rep = 0; rep < o.reps; ++rep)
         {
             const RunResult r = runOnce(f, o, snap, steps, memory && first && rep == 0);
             walls.push_back(r.wall);
+            cpus.push_back(r.cpu);
             contacts.push_back(r.contactsPerStep);
             if (rep == 0)
             {
@@ -727,6 +745,8 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
         );
         std::printf("#   field=%s reps wall_s:", f.name.c_str());
         for (double x : walls) std::printf(" %.4g", x);
+        std::printf("  cpu_s:");
+        for (double x : cpus) std::printf(" %.4g", x);
         std::printf("  neighbour_list_builds=%ld  state_hash=%016llx\n",
             rebuilds, static_cast<unsigned long long>(hash));
         std::fflush(stdout);

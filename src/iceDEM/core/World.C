@@ -74,6 +74,14 @@ void rotateFree(Quat& q, const Vec3& L, const Vec3& invI, double dt)
 } // anonymous namespace
 
 
+struct World::PairScratch
+{
+    std::vector<StoredContact> contacts;
+    std::vector<StoredFeatureList> lists;
+    std::vector<std::uint32_t> entries;
+};
+
+
 World::World(const WorldSettings& settings)
 :
     settings_(settings),
@@ -229,7 +237,7 @@ void World::removeBodies(const std::vector<bool>& remove)
 }
 
 
-void World::updateWorldVertices()
+void World::resizeBodyFrames()
 {
     const int N = static_cast<int>(bodies_.size());
     if (int(vertexOffset_.size()) != N + 1)
@@ -244,19 +252,32 @@ void World::updateWorldVertices()
         rotations_.resize(N);
         omegas_.resize(N);
     }
+}
+
+
+void World::updateBodyFrame(int i)
+{
+    const Body& b = bodies_[i];
+    const Mat3 R = b.rotation();
+    rotations_[i] = R;
+    omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
+    const auto& V = shapeOf(i).core().vertices();
+    Vec3* w = worldVertices_.data() + vertexOffset_[i];
+    for (std::size_t k = 0; k < V.size(); ++k)
+    {
+        w[k] = R*V[k] + b.x;
+    }
+}
+
+
+void World::updateWorldVertices()
+{
+    resizeBodyFrames();
+    const int N = static_cast<int>(bodies_.size());
     #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
     for (int i = 0; i < N; ++i)
     {
-        const Body& b = bodies_[i];
-        const Mat3 R = b.rotation();
-        rotations_[i] = R;
-        omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
-        const auto& V = shapeOf(i).core().vertices();
-        Vec3* w = worldVertices_.data() + vertexOffset_[i];
-        for (std::size_t k = 0; k < V.size(); ++k)
-        {
-            w[k] = R*V[k] + b.x;
-        }
+        updateBodyFrame(i);
     }
 }
 
@@ -363,24 +384,41 @@ void World::initialise(bool restart)
 
     if (restart)
     {
-        // Contact histories of the saved state into their pairs
+        // Contact histories of the saved state into their pairs: counts,
+        // then the pool in pair order (a pair's records in saved order)
         auto& pairs = nlist_->pairs();
-        for (const ContactRecord& r : pendingRecords_)
+        std::vector<int> pairOf(pendingRecords_.size());
+        for (std::size_t r = 0; r < pendingRecords_.size(); ++r)
         {
+            const ContactRecord& rec = pendingRecords_[r];
             auto it = std::find_if
             (
                 pairs.begin(), pairs.end(),
-                [&](const ContactPair& p) { return p.i == r.i && p.j == r.j; }
+                [&](const ContactPair& p) { return p.i == rec.i && p.j == rec.j; }
             );
             if (it == pairs.end() || it->nContacts >= maxContactsPerPair)
             {
                 throw Error("a saved contact does not match the bodies' positions", "contacts");
             }
-            StoredContact& c = it->contacts[it->nContacts++];
-            c = StoredContact();
-            c.featureI = r.featureI;
-            c.featureJ = r.featureJ;
-            c.xi = r.xi;
+            ++it->nContacts;
+            pairOf[r] = static_cast<int>(it - pairs.begin());
+        }
+        int first = 0;
+        std::vector<int> fill(pairs.size());
+        for (std::size_t k = 0; k < pairs.size(); ++k)
+        {
+            pairs[k].firstContact = first;
+            fill[k] = first;
+            first += pairs[k].nContacts;
+        }
+        auto& pool = nlist_->contacts();
+        pool.assign(first, StoredContact());
+        for (std::size_t r = 0; r < pendingRecords_.size(); ++r)
+        {
+            StoredContact& c = pool[fill[pairOf[r]]++];
+            c.featureI = pendingRecords_[r].featureI;
+            c.featureJ = pendingRecords_[r].featureJ;
+            c.xi = pendingRecords_[r].xi;
         }
         pendingRecords_.clear();
         // Contact geometry and counts for output, without touching the springs
@@ -390,9 +428,9 @@ void World::initialise(bool restart)
             F[i] = bodies_[i].force;
             T[i] = bodies_[i].torque;
         }
-        std::vector<ContactPair> saved = nlist_->pairs();
+        const NeighbourList saved = *nlist_;
         computeForces(0);
-        nlist_->pairs() = saved;
+        *nlist_ = saved;
         for (std::size_t i = 0; i < bodies_.size(); ++i)
         {
             bodies_[i].force = F[i];
@@ -469,24 +507,74 @@ ContactResult World::contactForce
 }
 
 
-void World::computeForces(double dtTangential)
+void World::preparePairs()
 {
-    auto& pairs = nlist_->pairs();
+    #ifdef _OPENMP
+    const int maxThreads = omp_get_max_threads();
+    #else
+    const int maxThreads = 1;
+    #endif
+    if (int(scratch_.size()) < maxThreads) scratch_.resize(maxThreads);
+    // All cleared here: the pools are sized from their sums, and a thread
+    // that is not in the next team must leave nothing behind
+    for (PairScratch& S : scratch_)
+    {
+        S.contacts.clear();
+        S.lists.clear();
+        S.entries.clear();
+    }
+    staged_.resize(nlist_->pairs().size());
+}
+
+
+void World::pairForces(double dtTangential)
+{
+    NeighbourList& nl = *nlist_;
+    auto& pairs = nl.pairs();
     const int nPairs = static_cast<int>(pairs.size());
 
-    #pragma omp parallel if(nPairs >= minParallelLoop)
+    // Orphaned work-sharing: called inside a parallel region (or by one
+    // thread); staged_ and scratch_ are sized by preparePairs
     {
+        #ifdef _OPENMP
+        PairScratch& S = scratch_[omp_get_thread_num()];
+        const int thread = omp_get_thread_num();
+        #else
+        PairScratch& S = scratch_[0];
+        const int thread = 0;
+        #endif
+
         FoundContact found[maxContactsPerPair];
-        StoredContact previous[maxContactsPerPair];
+        std::uint32_t entries[FeaturePairList::capacity];
+        // The pools of the last evaluation, read only in this loop
+        const StoredContact* oldContacts = nl.contacts().data();
+        const StoredFeatureList* oldLists = nl.featureLists().data();
+        const std::uint32_t* oldEntries = nl.listEntries().data();
 
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
-            const int nFound = findPairContacts(p, p.axis, found, &p.features);
 
+            FeaturePairList list;
+            list.entries = entries;
+            if (p.featureList >= 0)
+            {
+                const StoredFeatureList& L = oldLists[p.featureList];
+                list.count = L.count;
+                std::copy(oldEntries + L.firstEntry, oldEntries + L.firstEntry + L.count, entries);
+                list.xA = L.xA;
+                list.xB = L.xB;
+                list.qA = L.qA;
+                list.qB = L.qB;
+            }
+            const int nFound =
+                findPairContacts(p, p.axis, found, p.isWall() ? nullptr : &list);
+
+            const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
-            std::copy(p.contacts, p.contacts + nPrev, previous);
+            std::array<int, 3>& st = staged_[k];
+            st = {thread, static_cast<int>(S.contacts.size()), -1};
 
             p.nContacts = 0;
             p.forceOnJ.setZero();
@@ -498,7 +586,7 @@ void World::computeForces(double dtTangential)
             for (int c = 0; c < nFound; ++c)
             {
                 const FoundContact& fc = found[c];
-                StoredContact& sc = p.contacts[p.nContacts++];
+                StoredContact sc;
                 sc.featureI = fc.featureA;
                 sc.featureJ = fc.featureB;
                 sc.xi.setZero();
@@ -511,6 +599,8 @@ void World::computeForces(double dtTangential)
                     }
                 }
                 const ContactResult r = contactForce(p, fc.g, sc.xi, dtTangential);
+                S.contacts.push_back(sc);
+                ++p.nContacts;
 
                 const Vec3& x = fc.g.point;
                 p.forceOnJ += r.forceOnJ;
@@ -519,8 +609,71 @@ void World::computeForces(double dtTangential)
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
+
+            if (list.count >= 0)
+            {
+                st[2] = static_cast<int>(S.lists.size());
+                StoredFeatureList L;
+                L.xA = list.xA;
+                L.xB = list.xB;
+                L.qA = list.qA;
+                L.qB = list.qB;
+                L.count = list.count;
+                L.firstEntry = static_cast<int>(S.entries.size());
+                S.lists.push_back(L);
+                S.entries.insert(S.entries.end(), entries, entries + list.count);
+            }
+        }
+
+        // The new pools in pair order (independent of the thread count)
+        #pragma omp single
+        {
+            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
+            for (const PairScratch& T : scratch_)
+            {
+                nContacts += T.contacts.size();
+                nLists += T.lists.size();
+                nEntries += T.entries.size();
+            }
+            nl.contacts().resize(nContacts);
+            nl.featureLists().resize(nLists);
+            nl.listEntries().resize(nEntries);
+            contactCount_ = 0;
+            elasticEnergy_ = 0;
+            int lists = 0, entries = 0;
+            for (int k = 0; k < nPairs; ++k)
+            {
+                ContactPair& p = pairs[k];
+                p.firstContact = contactCount_;
+                contactCount_ += p.nContacts;
+                elasticEnergy_ += p.elasticEnergy;
+                const int l = staged_[k][2];
+                p.featureList = l >= 0 ? lists++ : -1;
+                if (l < 0) continue;
+                const PairScratch& T = scratch_[staged_[k][0]];
+                StoredFeatureList& L = nl.featureLists()[p.featureList];
+                L = T.lists[l];
+                const std::uint32_t* from = T.entries.data() + L.firstEntry;
+                std::copy(from, from + L.count, nl.listEntries().data() + entries);
+                L.firstEntry = entries;
+                entries += L.count;
+            }
+        }
+
+        #pragma omp for schedule(static)
+        for (int k = 0; k < nPairs; ++k)
+        {
+            const ContactPair& p = pairs[k];
+            const StoredContact* from = scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
+            std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
         }
     }
+}
+
+
+void World::bodyForces(double dtKick)
+{
+    const auto& pairs = nlist_->pairs();
 
     // Per-body sums in a fixed order
     const int N = static_cast<int>(bodies_.size());
@@ -589,44 +742,23 @@ void World::computeForces(double dtTangential)
             if (body.isFree())
             {
                 body.force += body.mass*settings_.gravity;
+                // Second half kick of a step (velocity Verlet)
+                if (dtKick > 0) halfKick(body, dtKick);
             }
         }
     }
-
-    contactCount_ = 0;
-    elasticEnergy_ = 0;
-    for (const ContactPair& p : pairs)
-    {
-        contactCount_ += p.nContacts;
-        elasticEnergy_ += p.elasticEnergy;
-    }
 }
 
 
-void World::integrateFirstHalf(double dt)
+void World::computeForces(double dtTangential)
 {
-    const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
-    for (int i = 0; i < N; ++i)
+    preparePairs();
+    const int nPairs = static_cast<int>(nlist_->pairs().size());
+    #pragma omp parallel if(nPairs >= minParallelLoop)
     {
-        Body& b = bodies_[i];
-        if (!b.isFree()) continue;
-        halfKick(b, dt);
-        b.x += dt*b.v;
-        rotateFree(b.q, b.L, b.invInertia, dt);
+        pairForces(dtTangential);
     }
-}
-
-
-void World::integrateSecondHalf(double dt)
-{
-    const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
-    for (int i = 0; i < N; ++i)
-    {
-        Body& b = bodies_[i];
-        if (b.isFree()) halfKick(b, dt);
-    }
+    bodyForces(0);
 }
 
 
@@ -636,14 +768,44 @@ void World::stepBy(double dt)
     {
         initialise();
     }
-    integrateFirstHalf(dt);
-    updateWorldVertices();
-    if (nlist_->needsRebuild(bodies_))
+    resizeBodyFrames();
+    preparePairs();
+    const int N = static_cast<int>(bodies_.size());
+
+    // One team for the first half step, the world frames, the neighbour
+    // list and the contacts (fewer fork-joins and barriers: on a loaded
+    // machine each waits for the slowest thread)
+    #pragma omp parallel if(N >= minParallelBodies)
     {
-        nlist_->build(*this);
+        // First half kick, drift, rotation; then the body's world frame
+        #pragma omp for schedule(static)
+        for (int i = 0; i < N; ++i)
+        {
+            Body& b = bodies_[i];
+            if (b.isFree())
+            {
+                halfKick(b, dt);
+                b.x += dt*b.v;
+                rotateFree(b.q, b.L, b.invInertia, dt);
+            }
+            updateBodyFrame(i);
+        }
+
+        #pragma omp single
+        {
+            if (nlist_->needsRebuild(bodies_))
+            {
+                nlist_->build(*this);
+                preparePairs();
+            }
+        }
+
+        pairForces(dt);
     }
-    computeForces(dt);
-    integrateSecondHalf(dt);
+
+    // Body sums, body-force models (their serial preparation first) and
+    // the second half kick
+    bodyForces(dt);
     time_ += dt;
     ++step_;
 }
@@ -711,6 +873,20 @@ int World::contactPairCount() const
 }
 
 
+std::size_t World::contactStateBytes() const
+{
+    std::size_t n = nlist_ ? nlist_->bytes() : 0;
+    n += staged_.capacity()*sizeof(staged_[0]);
+    for (const PairScratch& S : scratch_)
+    {
+        n += S.contacts.capacity()*sizeof(StoredContact)
+           + S.lists.capacity()*sizeof(StoredFeatureList)
+           + S.entries.capacity()*sizeof(std::uint32_t);
+    }
+    return n;
+}
+
+
 long World::neighbourListBuilds() const
 {
     return nlist_ ? nlist_->builds() : 0;
@@ -737,12 +913,10 @@ std::vector<ContactRecord> World::contactRecords() const
     if (!nlist_) return pendingRecords_;
     for (const ContactPair& p : nlist_->pairs())
     {
+        const StoredContact* sc = nlist_->contactsOf(p);
         for (int c = 0; c < p.nContacts; ++c)
         {
-            records.push_back
-            (
-                {p.i, p.j, p.contacts[c].featureI, p.contacts[c].featureJ, p.contacts[c].xi}
-            );
+            records.push_back({p.i, p.j, sc[c].featureI, sc[c].featureJ, sc[c].xi});
         }
     }
     return records;
@@ -770,11 +944,12 @@ std::vector<World::ContactInfo> World::contacts() const
         for (int c = 0; c < n; ++c)
         {
             Vec3 xi = Vec3::Zero();
+            const StoredContact* sc = nlist_->contactsOf(p);
             for (int m = 0; m < p.nContacts; ++m)
             {
-                if (p.contacts[m].featureI == found[c].featureA && p.contacts[m].featureJ == found[c].featureB)
+                if (sc[m].featureI == found[c].featureA && sc[m].featureJ == found[c].featureB)
                 {
-                    xi = p.contacts[m].xi;
+                    xi = sc[m].xi;
                 }
             }
             const ContactResult r = contactForce(p, found[c].g, xi, 0);

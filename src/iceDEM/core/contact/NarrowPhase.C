@@ -34,10 +34,12 @@ inline bool inVertexCone
 )
 {
     const ConvexPolyhedron& P = S.core();
-    const auto& dirs = S.vertexEdgeDirections();
     for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
     {
-        if (nBody.dot(dirs[k]) > tol)
+        // n . (+-t) = +-(n . t) bit for bit
+        const double lean =
+            S.vertexEdgeSign(v, k)*nBody.dot(S.edgeDirection(P.vertexEdges()[k]));
+        if (lean > tol)
         {
             return false;
         }
@@ -60,13 +62,14 @@ inline bool inVertexConeForEdge
 )
 {
     const ConvexPolyhedron& P = S.core();
-    const auto& dirs = S.vertexEdgeDirections();
     for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
     {
-        const double lean = nBody.dot(dirs[k]);
+        const Vec3& d = S.edgeDirection(P.vertexEdges()[k]);
+        const double lean = S.vertexEdgeSign(v, k)*nBody.dot(d);
         if (lean > coneTolerance)
         {
-            if (lean > parallelSin || dirs[k].cross(tBody).norm() >= parallelSin)
+            // |(+-d) x t| = |d x t|
+            if (lean > parallelSin || d.cross(tBody).norm() >= parallelSin)
             {
                 return false;
             }
@@ -497,19 +500,33 @@ public:
         );
     }
 
-    //- A listed feature pair
-    void evaluate(std::uint32_t entry)
+    //- The listed feature pairs, in order. A vertex transformed into the
+    //  other body's frame serves the entries that follow it with the same
+    //  vertex (the full search lists them together)
+    void evaluateList(const std::uint32_t* entries, int count)
     {
-        const int a = int((entry >> 14) & 0x7fff);
-        const int b = int(entry & 0x3fff);
-        switch (PairKind(entry >> 29))
+        int lastA = -1, lastB = -1;
+        Vec3 pA = Vec3::Zero(), pB = Vec3::Zero();
+        for (int k = 0; k < count; ++k)
         {
-            case vertexFaceAB: vertexFace(a, b, vertexAInB(a)); break;
-            case faceVertexAB: faceVertex(a, b, vertexBInA(b)); break;
-            case edgeEdgeAB: edgeEdge(a, b); break;
-            case vertexEdgeAB: vertexEdge(a, b); break;
-            case edgeVertexAB: edgeVertex(a, b); break;
-            case vertexVertexAB: vertexVertex(a, b); break;
+            const std::uint32_t entry = entries[k];
+            const int a = int((entry >> 14) & 0x7fff);
+            const int b = int(entry & 0x3fff);
+            switch (PairKind(entry >> 29))
+            {
+                case vertexFaceAB:
+                    if (a != lastA) { pA = vertexAInB(a); lastA = a; }
+                    vertexFace(a, b, pA);
+                    break;
+                case faceVertexAB:
+                    if (b != lastB) { pB = vertexBInA(b); lastB = b; }
+                    faceVertex(a, b, pB);
+                    break;
+                case edgeEdgeAB: edgeEdge(a, b); break;
+                case vertexEdgeAB: vertexEdge(a, b); break;
+                case edgeVertexAB: edgeVertex(a, b); break;
+                case vertexVertexAB: vertexVertex(a, b); break;
+            }
         }
     }
 
@@ -620,6 +637,20 @@ int findContacts
         axes[nAxes++] = Vec3::UnitX();
     }
 
+    // The feature-pair list holds while the cores have moved less than
+    // featureSkin relative to each other since it was built (a bound that
+    // depends on the present poses only, not on the path)
+    if (!(s.featureSkin > 0)) list = nullptr;
+    bool useList = false;
+    if (list && list->count >= 0)
+    {
+        const double moved =
+            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
+          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+        useList = moved < s.featureSkin - eta;
+    }
+
     double bestGap = -std::numeric_limits<double>::max();
     Vec3 best = axes[0];
     double bestMaxA = 0, bestMinB = 0;
@@ -645,30 +676,13 @@ int findContacts
         }
     }
 
-    // The feature-pair list holds while the cores have moved less than
-    // featureSkin relative to each other since it was built (a bound that
-    // depends on the present poses only, not on the path)
-    if (!(s.featureSkin > 0)) list = nullptr;
-    bool useList = false;
-    if (list && list->count >= 0)
-    {
-        const double moved =
-            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
-          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
-        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-        useList = moved < s.featureSkin - eta;
-    }
-
     PairSearch search(A, B, s, out, maxOut);
     Collector& col = search.col;
 
     if (useList)
     {
         // 2-3. The listed feature pairs, in the full search's order
-        for (int k = 0; k < list->count; ++k)
-        {
-            search.evaluate(list->entries[k]);
-        }
+        search.evaluateList(list->entries, list->count);
     }
     else
     {

@@ -261,4 +261,14 @@ void NeighbourList::build(const World& world)
     }
 }
 
+
+std::size_t NeighbourList::bytes() const
+{
+    return pairs_.capacity()*sizeof(ContactPair)
+        + contacts_.capacity()*sizeof(StoredContact)
+        + lists_.capacity()*sizeof(StoredFeatureList)
+        + listEntries_.capacity()*sizeof(std::uint32_t)
+        + (bodyStart_.capacity() + bodyPairs_.capacity())*sizeof(int);
+}
+
 } // namespace iceDEM

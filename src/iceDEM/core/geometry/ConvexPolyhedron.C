@@ -384,4 +384,16 @@ ConvexPolyhedron ConvexPolyhedron::transformed(const Mat3& R, const Vec3& t) con
     return P;
 }
 
+
+std::size_t ConvexPolyhedron::heapBytes() const
+{
+    return vertices_.capacity()*sizeof(Vec3)
+        + edges_.capacity()*sizeof(edges_[0])
+        + edgeFaces_.capacity()*sizeof(edgeFaces_[0])
+        + faceVertices_.capacity()*sizeof(int)
+        + faces_.capacity()*sizeof(Face)
+        + vertexEdgeStart_.capacity()*sizeof(int)
+        + vertexEdges_.capacity()*sizeof(int);
+}
+
 } // namespace iceDEM

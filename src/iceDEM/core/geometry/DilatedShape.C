@@ -85,36 +85,39 @@ DilatedShape::DilatedShape
 
     const int nE = static_cast<int>(core_.edges().size());
     edgeDirection_.resize(nE);
-    edgeInward_.resize(nE);
     for (int e = 0; e < nE; ++e)
     {
         const auto& ed = core_.edges()[e];
         edgeDirection_[e] = (core_.vertices()[ed[1]] - core_.vertices()[ed[0]]).normalized();
-        edgeInward_[e] = {core_.edgeInwardInFace(e, 0), core_.edgeInwardInFace(e, 1)};
     }
 
-    vertexEdgeDirection_.resize(core_.vertexEdges().size());
-    for (int v = 0; v < int(core_.vertices().size()); ++v)
-    {
-        for (int k = core_.vertexEdgeBegin(v); k < core_.vertexEdgeEnd(v); ++k)
-        {
-            const int e = core_.vertexEdges()[k];
-            const int w = core_.otherVertex(e, v);
-            vertexEdgeDirection_[k] = (core_.vertices()[w] - core_.vertices()[v]).normalized();
-        }
-    }
-
-    faceEdgeNormal_.resize(core_.faceVertices().size());
+    // Edge of each face loop slot: the edge at its first vertex that ends
+    // at the next one
+    faceEdge_.assign(core_.faceVertices().size(), -1);
     for (int f = 0; f < int(core_.faces().size()); ++f)
     {
         const auto& face = core_.faces()[f];
         for (int k = 0; k < face.count; ++k)
         {
-            const Vec3& a = core_.vertices()[core_.faceVertex(f, k)];
-            const Vec3& b = core_.vertices()[core_.faceVertex(f, (k + 1) % face.count)];
-            faceEdgeNormal_[face.begin + k] = (b - a).cross(face.normal).normalized();
+            const int a = core_.faceVertex(f, k);
+            const int b = core_.faceVertex(f, (k + 1) % face.count);
+            for (int m = core_.vertexEdgeBegin(a); m < core_.vertexEdgeEnd(a); ++m)
+            {
+                if (core_.otherVertex(core_.vertexEdges()[m], a) == b)
+                {
+                    faceEdge_[face.begin + k] = core_.vertexEdges()[m];
+                }
+            }
         }
     }
+}
+
+
+std::size_t DilatedShape::heapBytes() const
+{
+    return core_.heapBytes() + outer_.heapBytes()
+        + edgeDirection_.capacity()*sizeof(Vec3)
+        + faceEdge_.capacity()*sizeof(int);
 }
 
 } // namespace iceDEM
