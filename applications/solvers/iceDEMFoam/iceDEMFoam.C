@@ -118,7 +118,7 @@ int main(int argc, char *argv[])
                 "iceDEMProperties",
                 runTime.constant(),
                 runTime,
-                IOobject::MUST_READ,
+                IOobject::READ_IF_PRESENT,   // missing: iceDEMCase says so
                 IOobject::NO_WRITE,
                 false
             )
