@@ -23,6 +23,15 @@ constexpr double coneTolerance = 1e-9;
 //  normal, are one geometric contact
 constexpr double coincidenceTolerance = 1e-9;
 
+//- Sine of the angle below which nearly parallel edges give no contact at
+//  all: their closest points are computed to within about 4 eps/sin^2 of
+//  the edge length (the cancellation in sa, tb), which must stay below the
+//  feature-pair lists' round-off allowance listTolerance (R_A + R_B) >=
+//  listTolerance |edge|/2 (here: a fifth of it at most). Parallel edges
+//  have the same distance along their common part, which the contacts of
+//  its ends carry.
+constexpr double parallelRoundOffSin = 1e-4;
+
 //- Inside the normal cone of vertex v, within tol: n . d_k <= tol for every
 //  edge leaving v. nBody is outward from the shape.
 inline bool inVertexCone
@@ -400,10 +409,15 @@ public:
         const double a12 = d1.dot(d2);
         const double b1 = d1.dot(r);
         const double b2 = d2.dot(r);
-        // den = |d1 x d2|^2: (nearly) parallel edges give no edge-edge
-        // contact, and are rejected before dividing by it
+        // den = |d1 x d2|^2. Nearly parallel edges (sin <= parallelEdgeSin)
+        // give an edge-edge contact only where no other pair can: closest
+        // points strictly inside both edges and the normal strictly inside
+        // both wedges (not on a face's normal), i.e. the single closest
+        // point of the two cores. Edges within parallelRoundOffSin of
+        // parallel are rejected before dividing by den.
         const double den = a11*a22 - a12*a12;
-        if (!(den > parallelSin2_*a11*a22)) return;
+        const bool parallel = !(den > parallelSin2_*a11*a22);
+        if (parallel && !(den > parallelRoundOffSin*parallelRoundOffSin*a11*a22)) return;
         const double sa = (a12*b2 - a22*b1)/den;
         const double tb = (a11*b2 - a12*b1)/den;
         if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return;
@@ -416,7 +430,7 @@ public:
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
         const Vec3 n = diff/dist;
-        if (!inEdgeCone(SA_, a, RAt_*n, false) || !inEdgeCone(SB_, b, -(RBt_*n), false)) return;
+        if (!inEdgeCone(SA_, a, RAt_*n, parallel) || !inEdgeCone(SB_, b, -(RBt_*n), parallel)) return;
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
