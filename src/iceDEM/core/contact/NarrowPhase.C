@@ -23,6 +23,15 @@ constexpr double coneTolerance = 1e-9;
 //  normal, are one geometric contact
 constexpr double coincidenceTolerance = 1e-9;
 
+//- Sine of the angle below which nearly parallel edges give no contact at
+//  all: their closest points are computed to within about 4 eps/sin^2 of
+//  the edge length (the cancellation in sa, tb), which must stay below the
+//  feature-pair lists' round-off allowance listTolerance (R_A + R_B) >=
+//  listTolerance |edge|/2 (here: a fifth of it at most). Parallel edges
+//  have the same distance along their common part, which the contacts of
+//  its ends carry.
+constexpr double parallelRoundOffSin = 1e-4;
+
 //- Inside the normal cone of vertex v, within tol: n . d_k <= tol for every
 //  edge leaving v. nBody is outward from the shape.
 inline bool inVertexCone
@@ -384,6 +393,64 @@ public:
         );
     }
 
+    //- Edge a of A and edge b of B, nearly parallel (parallelRoundOffSin <
+    //  sin <= parallelEdgeSin), closest points strictly inside both edges and
+    //  the normal strictly inside both wedges: the single closest point of
+    //  the cores, an edge-edge contact. Same arithmetic as edgeEdge.
+    bool parallelEdgesTouch(int a, int b) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        const Vec3& p1 = wA_[EA[a][0]];
+        const Vec3 d1 = wA_[EA[a][1]] - p1;
+        const double a11 = d1.squaredNorm();
+        const Vec3& p2 = wB_[EB[b][0]];
+        const Vec3 d2 = wB_[EB[b][1]] - p2;
+        const double a22 = d2.squaredNorm();
+        const Vec3 r = p1 - p2;
+        const double a12 = d1.dot(d2);
+        const double b1 = d1.dot(r);
+        const double b2 = d2.dot(r);
+        const double den = a11*a22 - a12*a12;
+        if (den > parallelSin2_*a11*a22) return false;
+        if (!(den > parallelRoundOffSin*parallelRoundOffSin*a11*a22)) return false;
+        const double sa = (a12*b2 - a22*b1)/den;
+        const double tb = (a11*b2 - a12*b1)/den;
+        if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return false;
+        const Vec3 c1 = p1 + sa*d1;
+        const Vec3 diff = p2 + tb*d2 - c1;
+        const double dist = std::sqrt(diff.squaredNorm());
+        if (dist < tiny_) return false;
+        const Vec3 n = diff/dist;
+        return inEdgeCone(SA_, a, RAt_*n, true) && inEdgeCone(SB_, b, -(RBt_*n), true);
+    }
+
+    //- True if an edge e at vertex v of S leans towards the contact (nBody:
+    //  the normal away from S, in S's frame; inVertexConeForEdge allows it
+    //  when e is nearly parallel to the touched edge) and touches(e): e and
+    //  the touched edge give the nearly parallel edge-edge contact, which
+    //  then owns this one (same point as it leaves the edge's end)
+    template<class EdgePairTouches>
+    bool leaningEdgeOwns
+    (
+        const DilatedShape& S,
+        int v,
+        const Vec3& nBody,
+        EdgePairTouches touches
+    ) const
+    {
+        const ConvexPolyhedron& P = S.core();
+        for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
+        {
+            const int e = P.vertexEdges()[k];
+            if (S.vertexEdgeSign(v, k)*nBody.dot(S.edgeDirection(e)) > coneTolerance && touches(e))
+            {
+                return true;
+            }
+        }
+        return false;
+    }
+
     //- 3c. Edge a of A and edge b of B, not parallel, closest points inside
     //  both edges
     void edgeEdge(int a, int b)
@@ -400,10 +467,16 @@ public:
         const double a12 = d1.dot(d2);
         const double b1 = d1.dot(r);
         const double b2 = d2.dot(r);
-        // den = |d1 x d2|^2: (nearly) parallel edges give no edge-edge
-        // contact, and are rejected before dividing by it
+        // den = |d1 x d2|^2. Nearly parallel edges (sin <= parallelEdgeSin)
+        // give an edge-edge contact only where no other pair can: closest
+        // points strictly inside both edges and the normal strictly inside
+        // both wedges (not on a face's normal), i.e. the single closest
+        // point of the two cores. Edges within parallelRoundOffSin of
+        // parallel are rejected before dividing by den.
+        // (parallelEdgesTouch repeats this arithmetic)
         const double den = a11*a22 - a12*a12;
-        if (!(den > parallelSin2_*a11*a22)) return;
+        const bool parallel = !(den > parallelSin2_*a11*a22);
+        if (parallel && !(den > parallelRoundOffSin*parallelRoundOffSin*a11*a22)) return;
         const double sa = (a12*b2 - a22*b1)/den;
         const double tb = (a11*b2 - a12*b1)/den;
         if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return;
@@ -416,7 +489,7 @@ public:
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
         const Vec3 n = diff/dist;
-        if (!inEdgeCone(SA_, a, RAt_*n, false) || !inEdgeCone(SB_, b, -(RBt_*n), false)) return;
+        if (!inEdgeCone(SA_, a, RAt_*n, parallel) || !inEdgeCone(SB_, b, -(RBt_*n), parallel)) return;
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
@@ -444,6 +517,7 @@ public:
         (
             !inEdgeCone(SB_, b, -(RBt_*n), true)
          || !inVertexConeForEdge(SA_, i, RAt_*n, RAt_*de.normalized(), parallelSin_)
+         || leaningEdgeOwns(SA_, i, RAt_*n, [&](int e) { return parallelEdgesTouch(e, b); })
         ) return;
         col.add
         (
@@ -473,6 +547,7 @@ public:
         (
             !inEdgeCone(SA_, a, RAt_*n, true)
          || !inVertexConeForEdge(SB_, j, -(RBt_*n), RBt_*de.normalized(), parallelSin_)
+         || leaningEdgeOwns(SB_, j, -(RBt_*n), [&](int e) { return parallelEdgesTouch(a, e); })
         ) return;
         col.add
         (

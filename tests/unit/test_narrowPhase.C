@@ -1,0 +1,150 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM tests: the narrow phase finds the closest point of two cores in
+    configurations its windows once missed.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "testWorlds.H"
+#include "contact/NarrowPhase.H"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+using namespace iceDEM;
+using namespace iceDEM::test;
+
+namespace
+{
+
+//- Squared distance between the segments [p1, q1] and [p2, q2] (clamped
+//  closest points)
+double segmentSegmentDistance2(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2)
+{
+    const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+    const double a = d1.squaredNorm(), e = d2.squaredNorm();
+    const double b = d1.dot(d2), c = d1.dot(r), f = d2.dot(r);
+    const double den = a*e - b*b;
+    double s = den > 0 ? std::clamp((b*f - c*e)/den, 0.0, 1.0) : 0.0;
+    double t = (b*s + f)/e;
+    if (t < 0) { t = 0; s = std::clamp(-c/a, 0.0, 1.0); }
+    else if (t > 1) { t = 1; s = std::clamp((b - c)/a, 0.0, 1.0); }
+    return (p1 + s*d1 - p2 - t*d2).squaredNorm();
+}
+
+//- Distance between the cores of bodies i and j of w (separated cores), by
+//  brute force: every edge pair and every vertex over a face's interior
+double coreDistance(const World& w, int i, int j)
+{
+    const ConvexPolyhedron& PA = w.shapeOf(i).core();
+    const ConvexPolyhedron& PB = w.shapeOf(j).core();
+    const Vec3* vA = w.worldVertices(i);
+    const Vec3* vB = w.worldVertices(j);
+    double d2 = std::numeric_limits<double>::infinity();
+    for (const auto& ea : PA.edges())
+    {
+        for (const auto& eb : PB.edges())
+        {
+            d2 = std::min(d2, segmentSegmentDistance2(vA[ea[0]], vA[ea[1]], vB[eb[0]], vB[eb[1]]));
+        }
+    }
+    double d = std::sqrt(d2);
+    auto overFaces = [&d](const ConvexPolyhedron& P, const Body& body, const Vec3* others, int n)
+    {
+        const Mat3 R = body.rotation();
+        for (int f = 0; f < int(P.faces().size()); ++f)
+        {
+            const auto& face = P.faces()[f];
+            for (int k = 0; k < n; ++k)
+            {
+                const Vec3 p = R.transpose()*(others[k] - body.x);
+                const double h = face.normal.dot(p) - face.offset;
+                bool inside = h >= 0;
+                for (int m = 0; inside && m < face.count; ++m)
+                {
+                    const Vec3& v0 = P.vertices()[P.faceVertex(f, m)];
+                    const Vec3& v1 = P.vertices()[P.faceVertex(f, (m + 1) % face.count)];
+                    inside = (v1 - v0).cross(p - v0).dot(face.normal) >= 0;
+                }
+                if (inside) d = std::min(d, h);
+            }
+        }
+    };
+    overFaces(PB, w.bodies()[j], vA, int(PA.vertices().size()));
+    overFaces(PA, w.bodies()[i], vB, int(PB.vertices().size()));
+    return d;
+}
+
+BodyView viewOf(const World& w, int i)
+{
+    const Body& b = w.bodies()[i];
+    return BodyView{&w.shapeOf(i), w.worldVertices(i), b.rotation(), b.x, b.q};
+}
+
+} // anonymous namespace
+
+
+TEST(narrowPhase, twistedNearlyParallelEdgesCrossingKeepTheCoresApart)
+{
+    // The configuration of two floes of the compacting benchmark whose
+    // cores went through each other without a contact (tests/benchmark,
+    // -compactN 500, t = 10-12 s). Two prisms (cores 0.8 m thick, r = 0.1 m)
+    // face each other with their sides x = 0. Each is tilted about y
+    // (beta: the two sides are closer at the top, dihedral 2 beta = 0.06 >
+    // parallelEdgeSin) and twisted about x the other way (alpha: the top
+    // edges, sin 2 alpha = 0.0126 < parallelEdgeSin, cross near y = 0).
+    // Their lateral extents are staggered, so the top corner of each lies
+    // above the other's top edge. The closest point of the cores is the
+    // crossing of the two top edges, strictly inside both. Before: that
+    // nearly parallel edge pair was not a contact, and the pairs around it
+    // (vertex-face at the corners, vertex-edge at the edges' ends,
+    // edge-edge with the side edges) were all outside their windows: no
+    // contact at all, and the cores went through each other.
+    const double alpha = 0.0063, beta = 0.03, r = 0.1;
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    s.gravity = Vec3::Zero();
+    World w(s);
+    const int mat = w.addMaterial(ice(1e9, 920));
+    w.setPairProperties(mat, mat, PairProperties{0.2, 0.3});
+    const int sA = w.addShape(DilatedShape(ConvexPolyhedron::prism
+    (
+        {{-4, -2.65}, {0, -2.65}, {0, 2.65}, {-4, 2.65}}, -0.4, 0.8
+    ), r));
+    const int sB = w.addShape(DilatedShape(ConvexPolyhedron::prism
+    (
+        {{0, -2.45}, {4, -2.45}, {4, 2.85}, {0, 2.85}}, -0.4, 0.8
+    ), r));
+    const Quat qA =
+        Quat(Eigen::AngleAxisd(alpha, Vec3::UnitX()))*Quat(Eigen::AngleAxisd(beta, Vec3::UnitY()));
+    const Quat qB =
+        Quat(Eigen::AngleAxisd(-alpha, Vec3::UnitX()))*Quat(Eigen::AngleAxisd(-beta, Vec3::UnitY()));
+    w.addBody(sA, mat, Vec3::Zero(), qA);
+    w.addBody(sB, mat, Vec3(0.3, 0, 0), qB, Vec3(-0.5, 0, 0));
+    w.initialise();
+
+    const double rs = 2*r;
+    int touching = 0;
+    double closest = 1;
+    for (int step = 0; step < 1000; ++step)
+    {
+        w.step();
+        ASSERT_FALSE(coresIntersect(viewOf(w, 0), viewOf(w, 1))) << "step " << step;
+        const double d = coreDistance(w, 0, 1);
+        closest = std::min(closest, d);
+        if (d < rs)
+        {
+            // The closest point of the cores is a contact, with its overlap
+            ++touching;
+            double deepest = 0;
+            for (const auto& c : w.contacts()) deepest = std::max(deepest, c.overlap);
+            ASSERT_NEAR(deepest, rs - d, 1e-9) << "step " << step;
+        }
+    }
+    // One impact: about 40 steps of contact, an overlap of about 7 mm
+    // (edge-edge, R = 10 r), as the Hertz estimate gives
+    EXPECT_GT(touching, 10);
+    EXPECT_LT(closest, rs - 0.003);
+    // Stopped and pushed back (equal masses, e = 0.3)
+    EXPECT_GT(w.bodies()[1].v.x() - w.bodies()[0].v.x(), 0);
+}
