@@ -393,35 +393,58 @@ public:
         );
     }
 
-    //- Edge a of A and edge b of B, nearly parallel (parallelRoundOffSin <
-    //  sin <= parallelEdgeSin), closest points strictly inside both edges and
-    //  the normal strictly inside both wedges: the single closest point of
-    //  the cores, an edge-edge contact. Same arithmetic as edgeEdge.
-    bool parallelEdgesTouch(int a, int b) const
+    //- Closest points of edge a of A and edge b of B, world frame
+    struct EdgeCrossing
+    {
+        Vec3 c1;            //!< on edge a
+        Vec3 diff;          //!< from c1 to the closest point on edge b
+        Vec3 d1, d2;        //!< edge vectors
+        double a11, a22;    //!< their squared lengths
+        bool parallel;      //!< sin of their angle <= parallelEdgeSin
+    };
+
+    //- The closest points of edges a and b when they lie strictly inside
+    //  both edges; false as well for edges within parallelRoundOffSin of
+    //  parallel (rejected before dividing by den = |d1 x d2|^2)
+    bool edgeCrossing(int a, int b, EdgeCrossing& x) const
     {
         const auto& EA = PA_.edges();
         const auto& EB = PB_.edges();
         const Vec3& p1 = wA_[EA[a][0]];
-        const Vec3 d1 = wA_[EA[a][1]] - p1;
-        const double a11 = d1.squaredNorm();
+        x.d1 = wA_[EA[a][1]] - p1;
+        x.a11 = x.d1.squaredNorm();
         const Vec3& p2 = wB_[EB[b][0]];
-        const Vec3 d2 = wB_[EB[b][1]] - p2;
-        const double a22 = d2.squaredNorm();
+        x.d2 = wB_[EB[b][1]] - p2;
+        x.a22 = x.d2.squaredNorm();
         const Vec3 r = p1 - p2;
-        const double a12 = d1.dot(d2);
-        const double b1 = d1.dot(r);
-        const double b2 = d2.dot(r);
-        const double den = a11*a22 - a12*a12;
-        if (den > parallelSin2_*a11*a22) return false;
-        if (!(den > parallelRoundOffSin*parallelRoundOffSin*a11*a22)) return false;
-        const double sa = (a12*b2 - a22*b1)/den;
-        const double tb = (a11*b2 - a12*b1)/den;
+        const double a12 = x.d1.dot(x.d2);
+        const double b1 = x.d1.dot(r);
+        const double b2 = x.d2.dot(r);
+        const double den = x.a11*x.a22 - a12*a12;
+        x.parallel = !(den > parallelSin2_*x.a11*x.a22);
+        if (x.parallel && !(den > parallelRoundOffSin*parallelRoundOffSin*x.a11*x.a22))
+        {
+            return false;
+        }
+        const double sa = (a12*b2 - x.a22*b1)/den;
+        const double tb = (x.a11*b2 - a12*b1)/den;
         if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return false;
-        const Vec3 c1 = p1 + sa*d1;
-        const Vec3 diff = p2 + tb*d2 - c1;
-        const double dist = std::sqrt(diff.squaredNorm());
+        x.c1 = p1 + sa*x.d1;
+        x.diff = p2 + tb*x.d2 - x.c1;
+        return true;
+    }
+
+    //- Edge a of A and edge b of B, nearly parallel (parallelRoundOffSin <
+    //  sin <= parallelEdgeSin), closest points strictly inside both edges and
+    //  the normal strictly inside both wedges: the single closest point of
+    //  the cores, an edge-edge contact (as edgeEdge finds it)
+    bool parallelEdgesTouch(int a, int b) const
+    {
+        EdgeCrossing x;
+        if (!edgeCrossing(a, b, x) || !x.parallel) return false;
+        const double dist = std::sqrt(x.diff.squaredNorm());
         if (dist < tiny_) return false;
-        const Vec3 n = diff/dist;
+        const Vec3 n = x.diff/dist;
         return inEdgeCone(SA_, a, RAt_*n, true) && inEdgeCone(SB_, b, -(RBt_*n), true);
     }
 
@@ -451,49 +474,28 @@ public:
         return false;
     }
 
-    //- 3c. Edge a of A and edge b of B, not parallel, closest points inside
-    //  both edges
+    //- 3c. Edge a of A and edge b of B, closest points inside both edges
     void edgeEdge(int a, int b)
     {
-        const auto& EA = PA_.edges();
-        const auto& EB = PB_.edges();
-        const Vec3& p1 = wA_[EA[a][0]];
-        const Vec3 d1 = wA_[EA[a][1]] - p1;
-        const double a11 = d1.squaredNorm();
-        const Vec3& p2 = wB_[EB[b][0]];
-        const Vec3 d2 = wB_[EB[b][1]] - p2;
-        const double a22 = d2.squaredNorm();
-        const Vec3 r = p1 - p2;
-        const double a12 = d1.dot(d2);
-        const double b1 = d1.dot(r);
-        const double b2 = d2.dot(r);
-        // den = |d1 x d2|^2. Nearly parallel edges (sin <= parallelEdgeSin)
-        // give an edge-edge contact only where no other pair can: closest
-        // points strictly inside both edges and the normal strictly inside
-        // both wedges (not on a face's normal), i.e. the single closest
-        // point of the two cores. Edges within parallelRoundOffSin of
-        // parallel are rejected before dividing by den.
-        // (parallelEdgesTouch repeats this arithmetic)
-        const double den = a11*a22 - a12*a12;
-        const bool parallel = !(den > parallelSin2_*a11*a22);
-        if (parallel && !(den > parallelRoundOffSin*parallelRoundOffSin*a11*a22)) return;
-        const double sa = (a12*b2 - a22*b1)/den;
-        const double tb = (a11*b2 - a12*b1)/den;
-        if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return;
-        const Vec3 c1 = p1 + sa*d1;
-        const Vec3 diff = p2 + tb*d2 - c1;
-        const double dist2 = diff.squaredNorm();
+        // Nearly parallel edges (sin <= parallelEdgeSin) give an edge-edge
+        // contact only where no other pair can: closest points strictly
+        // inside both edges and the normal strictly inside both wedges (not
+        // on a face's normal), i.e. the single closest point of the two
+        // cores
+        EdgeCrossing x;
+        if (!edgeCrossing(a, b, x)) return;
+        const double dist2 = x.diff.squaredNorm();
         const double rch = reach();
         if (dist2 >= rch*rch) return;
-        const double sinAngle = d1.cross(d2).norm()/std::sqrt(a11*a22);
+        const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
-        const Vec3 n = diff/dist;
-        if (!inEdgeCone(SA_, a, RAt_*n, parallel) || !inEdgeCone(SB_, b, -(RBt_*n), parallel)) return;
+        const Vec3 n = x.diff/dist;
+        if (!inEdgeCone(SA_, a, RAt_*n, x.parallel) || !inEdgeCone(SB_, b, -(RBt_*n), x.parallel)) return;
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
-            c1, n, dist, rA_, rB_, sinAngle
+            x.c1, n, dist, rA_, rB_, sinAngle
         );
     }
 
