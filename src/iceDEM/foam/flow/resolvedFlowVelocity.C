@@ -225,7 +225,7 @@ Foam::vector Foam::resolvedFlowVelocity::interpolate
         // Linear reconstruction in the cell
         return
             Ucurrent_->primitiveField()[celli]
-          + ((p - mesh_.C()[celli]) & gradU_->primitiveField()[celli]);
+          + ((p - mesh_.cellCentres()[celli]) & gradU_->primitiveField()[celli]);
     }
     return interp_->interpolate(p, celli);
 }
@@ -311,7 +311,6 @@ void Foam::resolvedFlowVelocity::update()
     (void)mesh_.cellCentres();
     (void)mesh_.cellVolumes();
     (void)mesh_.bounds();
-    (void)mesh_.C();
     if (interpolationType_ != "cellGradient")
     {
         // The tetrahedra of the cells (cellPoint and its kin)
