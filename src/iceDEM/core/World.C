@@ -74,6 +74,16 @@ void rotateFree(Quat& q, const Vec3& L, const Vec3& invI, double dt)
 } // anonymous namespace
 
 
+struct World::PoolCounts
+{
+    int contacts = 0;
+    int lists = 0;
+    int entries = 0;
+    //- One cache line per thread (no false sharing)
+    char pad[64 - 3*sizeof(int)];
+};
+
+
 struct World::PairScratch
 {
     std::vector<StoredContact> contacts;
@@ -524,6 +534,7 @@ void World::preparePairs()
         S.entries.clear();
     }
     staged_.resize(nlist_->pairs().size());
+    chunkCounts_.resize(maxThreads);
 }
 
 
@@ -625,47 +636,140 @@ void World::pairForces(double dtTangential)
             }
         }
 
-        // The new pools in pair order (independent of the thread count)
-        #pragma omp single
+        // The new pools in pair order (independent of the thread count),
+        // written in parallel: each thread takes a static chunk of the
+        // pairs, whose offsets in the pools are the sums over the chunks
+        // before it (the pair loop's barrier made every count visible)
+        #ifdef _OPENMP
+        const int nThreads = omp_get_num_threads();
+        #else
+        const int nThreads = 1;
+        #endif
+        const int kBegin = static_cast<int>(static_cast<long>(nPairs)*thread/nThreads);
+        const int kEnd = static_cast<int>(static_cast<long>(nPairs)*(thread + 1)/nThreads);
+        PoolCounts& mine = chunkCounts_[thread];
+        mine = PoolCounts();
+        for (int k = kBegin; k < kEnd; ++k)
         {
-            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
-            for (const PairScratch& T : scratch_)
-            {
-                nContacts += T.contacts.size();
-                nLists += T.lists.size();
-                nEntries += T.entries.size();
-            }
-            nl.contacts().resize(nContacts);
-            nl.featureLists().resize(nLists);
-            nl.listEntries().resize(nEntries);
-            contactCount_ = 0;
-            elasticEnergy_ = 0;
-            int lists = 0, entries = 0;
-            for (int k = 0; k < nPairs; ++k)
-            {
-                ContactPair& p = pairs[k];
-                p.firstContact = contactCount_;
-                contactCount_ += p.nContacts;
-                elasticEnergy_ += p.elasticEnergy;
-                const int l = staged_[k][2];
-                p.featureList = l >= 0 ? lists++ : -1;
-                if (l < 0) continue;
-                const PairScratch& T = scratch_[staged_[k][0]];
-                StoredFeatureList& L = nl.featureLists()[p.featureList];
-                L = T.lists[l];
-                const std::uint32_t* from = T.entries.data() + L.firstEntry;
-                std::copy(from, from + L.count, nl.listEntries().data() + entries);
-                L.firstEntry = entries;
-                entries += L.count;
-            }
+            mine.contacts += pairs[k].nContacts;
+            const int l = staged_[k][2];
+            if (l < 0) continue;
+            ++mine.lists;
+            mine.entries += scratch_[staged_[k][0]].lists[l].count;
+        }
+        #pragma omp barrier
+
+        PoolCounts offset;
+        for (int t = 0; t < thread; ++t)
+        {
+            offset.contacts += chunkCounts_[t].contacts;
+            offset.lists += chunkCounts_[t].lists;
+            offset.entries += chunkCounts_[t].entries;
         }
 
-        #pragma omp for schedule(static)
-        for (int k = 0; k < nPairs; ++k)
+        #pragma omp single
         {
-            const ContactPair& p = pairs[k];
-            const StoredContact* from = scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
+            PoolCounts total;
+            for (int t = 0; t < nThreads; ++t)
+            {
+                total.contacts += chunkCounts_[t].contacts;
+                total.lists += chunkCounts_[t].lists;
+                total.entries += chunkCounts_[t].entries;
+            }
+            nl.contacts().resize(total.contacts);
+            nl.featureLists().resize(total.lists);
+            nl.listEntries().resize(total.entries);
+            contactCount_ = total.contacts;
+        }
+
+        // No barrier after this: what follows in the step (body sums) reads
+        // the pairs' forces, not the pools
+        for (int k = kBegin; k < kEnd; ++k)
+        {
+            ContactPair& p = pairs[k];
+            const PairScratch& T = scratch_[staged_[k][0]];
+            p.firstContact = offset.contacts;
+            const StoredContact* from = T.contacts.data() + staged_[k][1];
             std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
+            offset.contacts += p.nContacts;
+
+            const int l = staged_[k][2];
+            if (l < 0)
+            {
+                p.featureList = -1;
+                continue;
+            }
+            p.featureList = offset.lists++;
+            StoredFeatureList& L = nl.featureLists()[p.featureList];
+            L = T.lists[l];
+            const std::uint32_t* fromEntry = T.entries.data() + L.firstEntry;
+            std::copy(fromEntry, fromEntry + L.count, nl.listEntries().data() + offset.entries);
+            L.firstEntry = offset.entries;
+            offset.entries += L.count;
+        }
+    }
+}
+
+
+void World::sumBodyForces(double dtKick)
+{
+    const auto& pairs = nlist_->pairs();
+    const int N = static_cast<int>(bodies_.size());
+
+    // Orphaned: called inside a parallel region (or by one thread). Each
+    // thread takes a static chunk of bodies and does all of a body's work,
+    // so the chunk needs no barrier: contact sums in the body's fixed pair
+    // order, body-force models, totals and the second half kick
+    #ifdef _OPENMP
+    const int nt = omp_get_num_threads();
+    const int t = omp_get_thread_num();
+    #else
+    const int nt = 1;
+    const int t = 0;
+    #endif
+    const int begin = static_cast<int>(static_cast<long>(N)*t/nt);
+    const int end = static_cast<int>(static_cast<long>(N)*(t + 1)/nt);
+
+    for (int b = begin; b < end; ++b)
+    {
+        Body& body = bodies_[b];
+        Vec3 F = Vec3::Zero();
+        Vec3 T = Vec3::Zero();
+        for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+        {
+            const ContactPair& p = pairs[nlist_->bodyPair(k)];
+            if (p.i == b)
+            {
+                F -= p.forceOnJ;
+                T += p.torqueOnI;
+            }
+            else
+            {
+                F += p.forceOnJ;
+                T += p.torqueOnJ;
+            }
+        }
+        body.contactForce = F;
+        body.contactTorque = T;
+        modelForce_[b].setZero();
+        modelTorque_[b].setZero();
+    }
+
+    for (const auto& m : forceModels_)
+    {
+        m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+    }
+
+    for (int b = begin; b < end; ++b)
+    {
+        Body& body = bodies_[b];
+        body.force = body.contactForce + modelForce_[b];
+        body.torque = body.contactTorque + modelTorque_[b];
+        if (body.isFree())
+        {
+            body.force += body.mass*settings_.gravity;
+            // Second half kick of a step (velocity Verlet)
+            if (dtKick > 0) halfKick(body, dtKick);
         }
     }
 }
@@ -673,79 +777,20 @@ void World::pairForces(double dtTangential)
 
 void World::bodyForces(double dtKick)
 {
-    const auto& pairs = nlist_->pairs();
-
-    // Per-body sums in a fixed order
     const int N = static_cast<int>(bodies_.size());
 
-    // Serial preparation of the body-force models (e.g. flow sampling)
+    // Serial preparation of the body-force models (e.g. flow sampling,
+    // which may use a parallel region of its own and MPI)
     for (const auto& m : forceModels_)
     {
         m->prepare(*this);
     }
     modelForce_.resize(N);
     modelTorque_.resize(N);
-    std::fill(modelForce_.begin(), modelForce_.end(), Vec3::Zero());
-    std::fill(modelTorque_.begin(), modelTorque_.end(), Vec3::Zero());
 
     #pragma omp parallel if(N >= minParallelBodies)
     {
-        #pragma omp for schedule(static)
-        for (int b = 0; b < N; ++b)
-        {
-            Body& body = bodies_[b];
-            Vec3 F = Vec3::Zero();
-            Vec3 T = Vec3::Zero();
-            for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
-            {
-                const ContactPair& p = pairs[nlist_->bodyPair(k)];
-                if (p.i == b)
-                {
-                    F -= p.forceOnJ;
-                    T += p.torqueOnI;
-                }
-                else
-                {
-                    F += p.forceOnJ;
-                    T += p.torqueOnJ;
-                }
-            }
-            body.contactForce = F;
-            body.contactTorque = T;
-        }
-
-        // Body-force models on static chunks (each body independent)
-        if (!forceModels_.empty())
-        {
-            #ifdef _OPENMP
-            const int nt = omp_get_num_threads();
-            const int t = omp_get_thread_num();
-            #else
-            const int nt = 1;
-            const int t = 0;
-            #endif
-            const int begin = static_cast<int>(static_cast<long>(N)*t/nt);
-            const int end = static_cast<int>(static_cast<long>(N)*(t + 1)/nt);
-            for (const auto& m : forceModels_)
-            {
-                m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
-            }
-        }
-        #pragma omp barrier
-
-        #pragma omp for schedule(static)
-        for (int b = 0; b < N; ++b)
-        {
-            Body& body = bodies_[b];
-            body.force = body.contactForce + modelForce_[b];
-            body.torque = body.contactTorque + modelTorque_[b];
-            if (body.isFree())
-            {
-                body.force += body.mass*settings_.gravity;
-                // Second half kick of a step (velocity Verlet)
-                if (dtKick > 0) halfKick(body, dtKick);
-            }
-        }
+        sumBodyForces(dtKick);
     }
 }
 
@@ -771,14 +816,23 @@ void World::stepBy(double dt)
     resizeBodyFrames();
     preparePairs();
     const int N = static_cast<int>(bodies_.size());
+    modelForce_.resize(N);
+    modelTorque_.resize(N);
+
+    // Without body-force models the whole step is one parallel region;
+    // models prepare serially (flow sampling), between two regions
+    const bool oneRegion = forceModels_.empty();
+    const bool listCoversBodies = nlist_->coversBodies(bodies_.size());
+    bool rebuild = !listCoversBodies;
 
     // One team for the first half step, the world frames, the neighbour
     // list and the contacts (fewer fork-joins and barriers: on a loaded
     // machine each waits for the slowest thread)
     #pragma omp parallel if(N >= minParallelBodies)
     {
-        // First half kick, drift, rotation; then the body's world frame
-        #pragma omp for schedule(static)
+        // First half kick, drift, rotation; then the body's world frame and
+        // the neighbour list's check (some body moved more than skin/2)
+        #pragma omp for schedule(static) reduction(||: rebuild)
         for (int i = 0; i < N; ++i)
         {
             Body& b = bodies_[i];
@@ -789,11 +843,15 @@ void World::stepBy(double dt)
                 rotateFree(b.q, b.L, b.invInertia, dt);
             }
             updateBodyFrame(i);
+            if (listCoversBodies && !rebuild && nlist_->movedBeyondSkin(i, b.x))
+            {
+                rebuild = true;
+            }
         }
 
-        #pragma omp single
+        if (rebuild)
         {
-            if (nlist_->needsRebuild(bodies_))
+            #pragma omp single
             {
                 nlist_->build(*this);
                 preparePairs();
@@ -801,11 +859,13 @@ void World::stepBy(double dt)
         }
 
         pairForces(dt);
+
+        if (oneRegion) sumBodyForces(dt);
     }
 
-    // Body sums, body-force models (their serial preparation first) and
+    // Body-force models: their serial preparation, then the body sums and
     // the second half kick
-    bodyForces(dt);
+    if (!oneRegion) bodyForces(dt);
     time_ += dt;
     ++step_;
 }
@@ -902,7 +962,11 @@ Energies World::energies() const
         e.kinetic += b.kineticEnergy();
         e.gravitational -= b.mass*settings_.gravity.dot(b.x);
     }
-    e.elastic = elasticEnergy_;
+    // Summed in pair order (independent of the thread count)
+    if (nlist_)
+    {
+        for (const ContactPair& p : nlist_->pairs()) e.elastic += p.elasticEnergy;
+    }
     return e;
 }
 

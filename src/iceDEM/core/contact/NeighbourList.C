@@ -32,14 +32,13 @@ namespace
 
 bool NeighbourList::needsRebuild(const std::vector<Body>& bodies) const
 {
-    if (positionAtBuild_.size() != bodies.size())
+    if (!coversBodies(bodies.size()))
     {
         return true;
     }
-    const double limit2 = 0.25*skin_*skin_;
     for (std::size_t i = 0; i < bodies.size(); ++i)
     {
-        if ((bodies[i].x - positionAtBuild_[i]).squaredNorm() > limit2)
+        if (movedBeyondSkin(int(i), bodies[i].x))
         {
             return true;
         }
