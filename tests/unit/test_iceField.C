@@ -20,6 +20,7 @@ Description
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <tuple>
 #include <limits>
 
 using namespace iceDEM;
@@ -459,6 +460,59 @@ TEST(VoronoiField, ThicknessAndFloating)
         EXPECT_LE(f.thickness, 1.5);
     }
     EXPECT_NEAR(rep.meanThickness, 1.0 + 0.02, 0.05);
+}
+
+
+TEST(VoronoiField, HilbertNumberingKeepsTheFloesAndBringsNeighboursTogether)
+{
+    // The same field in two numberings: the same floes (one is a
+    // permutation of the other), and along the Hilbert curve consecutive
+    // floes are neighbours, where in seed order they are anywhere
+    VoronoiFieldSettings s = baseSettings(0.7);
+    s.nFloes = 800;
+    s.lloydIterations = 2;
+    s.thickness.distribution = ThicknessSettings::Distribution::uniform;
+    s.thickness.min = 0.8;
+    s.thickness.max = 1.6;
+    VoronoiFieldReport rep;
+    s.floeNumbering = FloeNumbering::seed;
+    const std::vector<Floe> bySeed = generateVoronoiField(s, rep);
+    s.floeNumbering = FloeNumbering::hilbert;
+    const std::vector<Floe> byCurve = generateVoronoiField(s, rep);
+    ASSERT_EQ(bySeed.size(), byCurve.size());
+
+    auto key = [](const Floe& f)
+    {
+        return std::make_tuple(f.centroid().x(), f.centroid().y(), f.thickness);
+    };
+    std::vector<std::tuple<double, double, double>> a, b;
+    for (const Floe& f : bySeed) a.push_back(key(f));
+    for (const Floe& f : byCurve) b.push_back(key(f));
+    EXPECT_NE(a, b);
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a, b);
+
+    auto meanStep = [](const std::vector<Floe>& floes)
+    {
+        double d = 0;
+        for (std::size_t i = 1; i < floes.size(); ++i)
+        {
+            d += (floes[i].centroid() - floes[i - 1].centroid()).norm();
+        }
+        return d/double(floes.size() - 1);
+    };
+    // Floe spacing sqrt(region area/N) = 5 m. Along the curve a step is
+    // about one spacing (6.0 m: neighbours, and a few jumps between the
+    // curve's quadrants); in random order about a third of the region (80 m)
+    const double spacing = std::sqrt(200.0*100.0/800.0);
+    EXPECT_LT(meanStep(byCurve), 1.5*spacing) << "spacing " << spacing;
+    EXPECT_GT(meanStep(bySeed), 10*spacing) << "spacing " << spacing;
+
+    expectError
+    (
+        [&]{ floeNumberingFromName("random"); }, "floeNumbering"
+    );
 }
 
 

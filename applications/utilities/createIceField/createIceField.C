@@ -66,6 +66,9 @@ Usage
                                     // thickness (or min) must exceed 2r
     seed            1;              // [1] random seed (>= 0): same seed, same field
     lloydIterations 0;              // [0] Lloyd relaxation steps (more regular)
+    floeNumbering   hilbert;        // [hilbert] floes numbered along a Hilbert
+                                    // curve (faster DEM on large fields), or
+                                    // seed: in the random order of the seeds
     velocity        (0 0 0);        // [(0 0 0)] initial velocity of every floe [m/s]
     iceDensity      900;            // [900] kg/m3, floating: zBottom =
     waterDensity    1025;           // [1025]  waterLevel - (iceDensity/waterDensity) h
@@ -289,6 +292,16 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
 
     s.lloydIterations =
         dict.getOrDefault<label>("lloydIterations", s.lloydIterations);
+
+    const word numbering = dict.getOrDefault<word>("floeNumbering", "hilbert");
+    try
+    {
+        s.floeNumbering = iceDEM::floeNumberingFromName(numbering);
+    }
+    catch (const iceDEM::Error& err)
+    {
+        fatalCoreError(dict, err);
+    }
 
     const vector U = dict.getOrDefault<vector>("velocity", vector::zero);
     s.velocity = iceDEM::Vec3(U.x(), U.y(), U.z());
