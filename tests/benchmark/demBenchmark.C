@@ -154,24 +154,41 @@ long residentKB()
 
 
 //- FNV-1a over the bytes of the bodies' state (x, q, v, L)
+//- FNV-1a over the bytes of n doubles
+void mixHash(std::uint64_t& h, const double* p, int n)
+{
+    const unsigned char* b = reinterpret_cast<const unsigned char*>(p);
+    for (std::size_t k = 0; k < n*sizeof(double); ++k)
+    {
+        h ^= b[k];
+        h *= 1099511628211ULL;
+    }
+}
+
+constexpr std::uint64_t hashSeed = 1469598103934665603ULL;
+
 std::uint64_t stateHash(const World& w)
 {
-    std::uint64_t h = 1469598103934665603ULL;
-    auto mix = [&h](const double* p, int n)
-    {
-        const unsigned char* b = reinterpret_cast<const unsigned char*>(p);
-        for (std::size_t k = 0; k < n*sizeof(double); ++k)
-        {
-            h ^= b[k];
-            h *= 1099511628211ULL;
-        }
-    };
+    std::uint64_t h = hashSeed;
     for (const Body& b : w.bodies())
     {
-        mix(b.x.data(), 3);
-        mix(b.q.coeffs().data(), 4);
-        mix(b.v.data(), 3);
-        mix(b.L.data(), 3);
+        mixHash(h, b.x.data(), 3);
+        mixHash(h, b.q.coeffs().data(), 4);
+        mixHash(h, b.v.data(), 3);
+        mixHash(h, b.L.data(), 3);
+    }
+    return h;
+}
+
+
+//- The floes' outlines in their order: a cached compaction belongs to one
+//  field, numbering included
+std::uint64_t fieldHash(const std::vector<Floe>& floes)
+{
+    std::uint64_t h = hashSeed;
+    for (const Floe& f : floes)
+    {
+        for (const Vec2& p : f.outline) mixHash(h, p.data(), 2);
     }
     return h;
 }
@@ -818,7 +835,8 @@ int main(int argc, char* argv[])
             std::ostringstream file;
             file << o.cache << "/compacted_N" << o.compactN << "_seed" << o.seed
                  << "_lloyd" << o.lloyd << "_push" << o.push << "_T" << o.compactTime
-                 << "_skin" << o.skin << ".state";
+                 << "_skin" << o.skin << "_field" << std::hex << fieldHash(f.floes)
+                 << ".state";
             Snapshot snap;
             if (readSnapshot(file.str(), snap) && snap.bodies.size() == f.floes.size() + 1)
             {

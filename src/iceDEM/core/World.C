@@ -28,6 +28,25 @@ constexpr int minParallelLoop = 256;
 //- Loops over bodies: a body's work is small, so a larger cut-off
 constexpr int minParallelBodies = 1000;
 
+//- The step's body and pair loops ask for the data of the body (pair)
+//  this far ahead
+constexpr int prefetchAhead = 2;
+
+//- Ask the cache for [from, from + bytes)
+inline void prefetchForRead(const void* from, std::size_t bytes)
+{
+    constexpr std::size_t cacheLine = 64;
+    const char* c = static_cast<const char*>(from);
+    for (std::size_t b = 0; b < bytes; b += cacheLine) __builtin_prefetch(c + b, 0);
+}
+
+inline void prefetchForWrite(const void* to, std::size_t bytes)
+{
+    constexpr std::size_t cacheLine = 64;
+    const char* c = static_cast<const char*>(to);
+    for (std::size_t b = 0; b < bytes; b += cacheLine) __builtin_prefetch(c + b, 1);
+}
+
 //- Half a step of the velocities under the last forces (velocity Verlet)
 inline void halfKick(Body& b, double dt)
 {
@@ -277,6 +296,29 @@ void World::updateBodyFrame(int i)
     {
         w[k] = R*V[k] + b.x;
     }
+}
+
+
+void World::prefetchBodyFrame(int i) const
+{
+    // The shape's vertices live in a heap block of their own: on a large
+    // field the hardware does not see them coming, and the load would stall
+    const auto& V = shapeOf(i).core().vertices();
+    const std::size_t bytes = V.size()*sizeof(Vec3);
+    prefetchForRead(V.data(), bytes);
+    prefetchForWrite(worldVertices_.data() + vertexOffset_[i], bytes);
+}
+
+
+void World::prefetchPair(const ContactPair& p) const
+{
+    // What the separating-axis test reads first: the two shapes' headers
+    // and world vertices (body j is anywhere in memory)
+    prefetchForRead(&shapeOf(p.i), sizeof(DilatedShape));
+    prefetchForRead(worldVertices(p.i), shapeOf(p.i).core().vertices().size()*sizeof(Vec3));
+    if (p.isWall()) return;
+    prefetchForRead(&shapeOf(p.j), sizeof(DilatedShape));
+    prefetchForRead(worldVertices(p.j), shapeOf(p.j).core().vertices().size()*sizeof(Vec3));
 }
 
 
@@ -566,6 +608,7 @@ void World::pairForces(double dtTangential)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
+            if (k + prefetchAhead < nPairs) prefetchPair(pairs[k + prefetchAhead]);
 
             FeaturePairList list;
             list.entries = entries;
@@ -842,6 +885,7 @@ void World::stepBy(double dt)
                 b.x += dt*b.v;
                 rotateFree(b.q, b.L, b.invInertia, dt);
             }
+            if (i + prefetchAhead < N) prefetchBodyFrame(i + prefetchAhead);
             updateBodyFrame(i);
             if (listCoversBodies && !rebuild && nlist_->movedBeyondSkin(i, b.x))
             {
