@@ -682,12 +682,29 @@ void World::pairForces(double dtTangential)
         // The new pools in pair order (independent of the thread count),
         // written in parallel: each thread takes a static chunk of the
         // pairs, whose offsets in the pools are the sums over the chunks
-        // before it (the pair loop's barrier made every count visible)
+        // before it. The pair loop's barrier made every count visible; the
+        // pools' sizes are the scratch totals, so one thread sizes them
+        // while the others count their chunks
         #ifdef _OPENMP
         const int nThreads = omp_get_num_threads();
         #else
         const int nThreads = 1;
         #endif
+        #pragma omp master
+        {
+            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
+            for (const PairScratch& T : scratch_)
+            {
+                nContacts += T.contacts.size();
+                nLists += T.lists.size();
+                nEntries += T.entries.size();
+            }
+            nl.contacts().resize(nContacts);
+            nl.featureLists().resize(nLists);
+            nl.listEntries().resize(nEntries);
+            contactCount_ = static_cast<int>(nContacts);
+        }
+
         const int kBegin = static_cast<int>(static_cast<long>(nPairs)*thread/nThreads);
         const int kEnd = static_cast<int>(static_cast<long>(nPairs)*(thread + 1)/nThreads);
         PoolCounts& mine = chunkCounts_[thread];
@@ -708,21 +725,6 @@ void World::pairForces(double dtTangential)
             offset.contacts += chunkCounts_[t].contacts;
             offset.lists += chunkCounts_[t].lists;
             offset.entries += chunkCounts_[t].entries;
-        }
-
-        #pragma omp single
-        {
-            PoolCounts total;
-            for (int t = 0; t < nThreads; ++t)
-            {
-                total.contacts += chunkCounts_[t].contacts;
-                total.lists += chunkCounts_[t].lists;
-                total.entries += chunkCounts_[t].entries;
-            }
-            nl.contacts().resize(total.contacts);
-            nl.featureLists().resize(total.lists);
-            nl.listEntries().resize(total.entries);
-            contactCount_ = total.contacts;
         }
 
         // No barrier after this: what follows in the step (body sums) reads
