@@ -798,6 +798,10 @@ int main(int argc, char* argv[])
     {
         std::printf("# demBenchmark: load average %s, %d processors, reps=%d\n",
             loadAverage().c_str(), omp_get_num_procs(), o.reps);
+        // Waiting threads spin (default, ACTIVE) or sleep (PASSIVE): a step
+        // has a few barriers, and with PASSIVE each costs a wake-up
+        const char* wait = std::getenv("OMP_WAIT_POLICY");
+        std::printf("# OMP_WAIT_POLICY=%s\n", wait ? wait : "(unset: spin, then sleep)");
 
         if (o.drift)
         {
