@@ -83,32 +83,14 @@ DilatedShape::DilatedShape
     boundingRadius_ = rMax + radius_;
     coreHalfExtents_ = 0.5*(hi - lo);
 
+    // Edge lengths, exactly as normalized() computes the norm it divides by
     const int nE = static_cast<int>(core_.edges().size());
-    edgeDirection_.resize(nE);
+    edgeLength_.resize(nE);
     for (int e = 0; e < nE; ++e)
     {
         const auto& ed = core_.edges()[e];
-        edgeDirection_[e] = (core_.vertices()[ed[1]] - core_.vertices()[ed[0]]).normalized();
-    }
-
-    // Edge of each face loop slot: the edge at its first vertex that ends
-    // at the next one
-    faceEdge_.assign(core_.faceVertices().size(), -1);
-    for (int f = 0; f < int(core_.faces().size()); ++f)
-    {
-        const auto& face = core_.faces()[f];
-        for (int k = 0; k < face.count; ++k)
-        {
-            const int a = core_.faceVertex(f, k);
-            const int b = core_.faceVertex(f, (k + 1) % face.count);
-            for (int m = core_.vertexEdgeBegin(a); m < core_.vertexEdgeEnd(a); ++m)
-            {
-                if (core_.otherVertex(core_.vertexEdges()[m], a) == b)
-                {
-                    faceEdge_[face.begin + k] = core_.vertexEdges()[m];
-                }
-            }
-        }
+        const Vec3 d = core_.vertices()[ed[1]] - core_.vertices()[ed[0]];
+        edgeLength_[e] = std::sqrt(d.squaredNorm());
     }
 }
 
@@ -116,8 +98,13 @@ DilatedShape::DilatedShape
 std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes() + outer_.heapBytes()
-        + edgeDirection_.capacity()*sizeof(Vec3)
-        + faceEdge_.capacity()*sizeof(int);
+        + edgeLength_.capacity()*sizeof(double);
+}
+
+
+std::size_t DilatedShape::sharedHeapBytes() const
+{
+    return core_.topology().heapBytes() + outer_.topology().heapBytes();
 }
 
 } // namespace iceDEM
