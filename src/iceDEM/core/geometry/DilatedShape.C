@@ -71,17 +71,13 @@ DilatedShape::DilatedShape
     core_ = coreInput.transformed(Rt, -Rt*centroidInput_);
     outer_ = outerInput.transformed(Rt, -Rt*centroidInput_);
 
-    // Precomputed contact data, principal frame
+    // Bounding sphere about the centroid
     double rMax = 0;
-    Vec3 lo = core_.vertices()[0], hi = lo;
     for (const Vec3& v : core_.vertices())
     {
         rMax = std::max(rMax, v.norm());
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
     }
     boundingRadius_ = rMax + radius_;
-    coreHalfExtents_ = 0.5*(hi - lo);
 
     // Edge lengths, exactly as normalized() computes the norm it divides by
     const int nE = static_cast<int>(core_.edges().size());
@@ -92,6 +88,18 @@ DilatedShape::DilatedShape
         const Vec3 d = core_.vertices()[ed[1]] - core_.vertices()[ed[0]];
         edgeLength_[e] = std::sqrt(d.squaredNorm());
     }
+}
+
+
+Vec3 DilatedShape::coreHalfExtents() const
+{
+    Vec3 lo = core_.vertices()[0], hi = lo;
+    for (const Vec3& v : core_.vertices())
+    {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+    }
+    return 0.5*(hi - lo);
 }
 
 
