@@ -222,6 +222,11 @@ TEST(geometry, sharedTopology)
     const ConvexPolyhedron E(std::move(D));
     EXPECT_EQ(&E.topology(), &A.topology());
     EXPECT_EQ(E.vertices()[3], C.vertices()[3]);
+    // A moved-from polyhedron is empty and usable
+    EXPECT_EQ(D.vertices().size(), 0u);
+    EXPECT_EQ(D.edges().size(), 0u);
+    D = E;
+    EXPECT_EQ(D.vertices()[3], C.vertices()[3]);
 
     // Face-loop slot edges: from loop vertex k to k+1
     for (int f = 0; f < A.topology().nFaces(); ++f)

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace iceDEM
 {
@@ -146,6 +147,27 @@ ConvexPolyhedron& ConvexPolyhedron::operator=(const ConvexPolyhedron& P)
     {
         ConvexPolyhedron copy(P);
         *this = std::move(copy);
+    }
+    return *this;
+}
+
+
+ConvexPolyhedron::ConvexPolyhedron(ConvexPolyhedron&& P) noexcept
+:
+    topology_(std::move(P.topology_)),
+    geometry_(std::move(P.geometry_))
+{
+    P.topology_ = PolyhedronTopology::empty();
+}
+
+
+ConvexPolyhedron& ConvexPolyhedron::operator=(ConvexPolyhedron&& P) noexcept
+{
+    if (this != &P)
+    {
+        topology_ = std::move(P.topology_);
+        geometry_ = std::move(P.geometry_);
+        P.topology_ = PolyhedronTopology::empty();
     }
     return *this;
 }
