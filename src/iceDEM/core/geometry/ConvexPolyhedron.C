@@ -119,12 +119,17 @@ ConvexPolyhedron::ConvexPolyhedron
 
 void ConvexPolyhedron::allocateGeometry()
 {
+    static_assert(sizeof(Vec3) % alignof(Plane) == 0, "planes after the vertices stay aligned");
+    static_assert(alignof(Plane) <= alignof(std::max_align_t), "new[] aligns the block");
+
     const std::size_t nV = topology_->nVertices();
     const std::size_t nF = topology_->nFaces();
     geometry_.reset(new std::byte[nV*sizeof(Vec3) + nF*sizeof(Plane)]);
-    // Start the objects' lifetimes in the raw block (values set by the caller)
-    new (geometry_.get()) Vec3[nV];
-    new (geometry_.get() + nV*sizeof(Vec3)) Plane[nF];
+    // Start the objects' lifetimes in the raw block, one by one (an array
+    // placement-new may add a cookie); values set by the caller
+    std::byte* p = geometry_.get();
+    for (std::size_t v = 0; v < nV; ++v, p += sizeof(Vec3)) new (p) Vec3;
+    for (std::size_t f = 0; f < nF; ++f, p += sizeof(Plane)) new (p) Plane;
 }
 
 
