@@ -74,6 +74,7 @@ Usage
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -674,10 +675,22 @@ RunResult runOnce
         // about 16 B per heap block, excluded)
         const double skin = o.skin > 0 ? o.skin : kRadius;
         const long pairs = estimateCandidatePairs(*world, skin);
+        // Per shape: the object, its own heap (the polyhedra's vertices and
+        // face planes, edge lengths); the topologies are shared between
+        // shapes: each distinct one counted once
         double shapeBytes = 0;
+        std::set<const PolyhedronTopology*> topologies;
+        double topologyBytes = 0;
         for (const DilatedShape& S : world->shapes())
         {
             shapeBytes += sizeof(DilatedShape) + S.heapBytes();
+            for (const ConvexPolyhedron* P : {&S.core(), &S.outer()})
+            {
+                if (topologies.insert(&P->topology()).second)
+                {
+                    topologyBytes += P->topology().heapBytes();
+                }
+            }
         }
         const double n = world->bodies().size();
         const double nF = f.floes.size();
@@ -686,12 +699,14 @@ RunResult runOnce
         (
             "# memory N=%zu rss_per_floe_B=%.0f peak_rss_MB=%.1f"
             " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core and"
-            " outer polyhedra, edge directions, face edges), world vertices,"
+            " outer vertices and face planes, edge lengths; + %zu shared"
+            " topologies %.0f B), world vertices,"
             " rotation and omega %.0f B; contact state %.0f B per floe"
             " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"
             " StoredContact %zu B per contact, feature lists %zu B + 4 B per entry)\n",
             f.floes.size(), r.rssPerFloe, r.peakKB/1024.0,
-            sizeof(Body), shapeBytes/n, sizeof(DilatedShape),
+            sizeof(Body), (shapeBytes + topologyBytes)/n, sizeof(DilatedShape),
+            topologies.size(), topologyBytes/n,
             24.0*nv + sizeof(Mat3) + sizeof(Vec3),
             world->contactStateBytes()/nF,
             pairs/nF, sizeof(ContactPair),

@@ -177,3 +177,87 @@ TEST(geometry, principalFrameOfRotatedBox)
     EXPECT_NEAR(mean.norm()/8, 0, 1e-12);
     EXPECT_NEAR(S.boundingRadius(), (h).norm() + 0.1, 1e-12);
 }
+
+// Memory per floe (issue 7): polyhedra with the same combinatorics share one
+// topology object; each keeps its own vertices and face planes
+TEST(geometry, sharedTopology)
+{
+    const std::vector<Vec2> hexagonA =
+        {{0, 0}, {2, -0.5}, {3.5, 1}, {3, 3}, {1, 3.5}, {-0.5, 2}};
+    std::vector<Vec2> hexagonB;
+    for (const Vec2& p : hexagonA) hexagonB.push_back(1.3*p + Vec2(10, -4));
+    const ConvexPolyhedron A = ConvexPolyhedron::prism(hexagonA, 0, 1);
+    const ConvexPolyhedron B = ConvexPolyhedron::prism(hexagonB, -0.3, 0.7);
+    const ConvexPolyhedron box = ConvexPolyhedron::box(Vec3(1, 2, 3));
+
+    EXPECT_EQ(&A.topology(), &B.topology());
+    EXPECT_NE(&A.topology(), &box.topology());
+    EXPECT_EQ(A.topology().nVertices(), 12);
+    EXPECT_EQ(A.topology().nEdges(), 18);
+    EXPECT_EQ(A.topology().nFaces(), 8);
+    EXPECT_NE(A.vertices()[0], B.vertices()[0]);
+
+    // Own geometry: vertices and face planes, nothing else
+    EXPECT_EQ(A.heapBytes(), 12*sizeof(Vec3) + 8*sizeof(ConvexPolyhedron::Plane));
+
+    // Copies and moved copies share the topology and hold equal geometry
+    const Mat3 R = Eigen::AngleAxisd(0.4, Vec3(0, 0, 1)).toRotationMatrix();
+    const ConvexPolyhedron C = A.transformed(R, Vec3(1, 2, 3));
+    ConvexPolyhedron D;
+    EXPECT_EQ(D.vertices().size(), 0u);
+    EXPECT_EQ(D.faces().size(), 0u);
+    D = C;
+    EXPECT_EQ(&D.topology(), &A.topology());
+    for (std::size_t v = 0; v < C.vertices().size(); ++v)
+    {
+        EXPECT_EQ(D.vertices()[v], C.vertices()[v]);
+    }
+    for (std::size_t f = 0; f < C.faces().size(); ++f)
+    {
+        EXPECT_EQ(D.faces()[f].normal, C.faces()[f].normal);
+        EXPECT_EQ(D.faces()[f].offset, C.faces()[f].offset);
+        // transformed(): each plane through the loop's first vertex
+        EXPECT_EQ(C.faces()[f].offset, C.faces()[f].normal.dot(C.vertices()[C.faceVertex(int(f), 0)]));
+    }
+    const ConvexPolyhedron E(std::move(D));
+    EXPECT_EQ(&E.topology(), &A.topology());
+    EXPECT_EQ(E.vertices()[3], C.vertices()[3]);
+    // A moved-from polyhedron is empty and usable
+    EXPECT_EQ(D.vertices().size(), 0u);
+    EXPECT_EQ(D.edges().size(), 0u);
+    D = E;
+    EXPECT_EQ(D.vertices()[3], C.vertices()[3]);
+
+    // Face-loop slot edges: from loop vertex k to k+1
+    for (int f = 0; f < A.topology().nFaces(); ++f)
+    {
+        const int n = A.faces()[f].count;
+        for (int k = 0; k < n; ++k)
+        {
+            const auto& e = A.edges()[A.faceEdge(f, k)];
+            const int a = A.faceVertex(f, k);
+            const int b = A.faceVertex(f, (k + 1) % n);
+            EXPECT_TRUE((e[0] == a && e[1] == b) || (e[0] == b && e[1] == a));
+        }
+    }
+}
+
+// The shape's edge directions, computed from the stored edge lengths, are bit
+// for bit what normalized() gives (the contact windows' results must not
+// depend on how the shape stores them)
+TEST(geometry, edgeDirectionsExact)
+{
+    const std::vector<Vec2> polygon =
+        {{0.1, 0.2}, {2.3, -0.7}, {3.9, 1.1}, {3.1, 3.3}, {0.9, 3.7}, {-0.6, 2.05}, {-0.4, 0.9}};
+    const DilatedShape S(ConvexPolyhedron::prism(polygon, -0.45, 0.9), 0.1);
+    const ConvexPolyhedron& P = S.core();
+    for (int e = 0; e < int(P.edges().size()); ++e)
+    {
+        const Vec3 d =
+            (P.vertices()[P.edges()[e][1]] - P.vertices()[P.edges()[e][0]]).normalized();
+        EXPECT_EQ(S.edgeDirection(e), d);
+    }
+    // The outer polyhedron has its own (canonical) numbering and topology
+    EXPECT_EQ(S.outer().vertices().size(), P.vertices().size());
+    EXPECT_EQ(S.heapBytes(), P.heapBytes() + S.outer().heapBytes() + P.edges().size()*sizeof(double));
+}

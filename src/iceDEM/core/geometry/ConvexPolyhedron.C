@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace iceDEM
 {
@@ -21,23 +22,27 @@ namespace
 }
 
 
+ConvexPolyhedron::ConvexPolyhedron()
+:
+    topology_(PolyhedronTopology::empty())
+{}
+
+
 ConvexPolyhedron::ConvexPolyhedron
 (
     const std::vector<Vec3>& vertices,
     const std::vector<std::vector<int>>& faceLoops
 )
-:
-    vertices_(vertices)
 {
-    if (vertices_.size() < 4 || faceLoops.size() < 4)
+    if (vertices.size() < 4 || faceLoops.size() < 4)
     {
         throw Error("a polyhedron needs at least 4 vertices and 4 faces", "points");
     }
 
     double size = 0;
-    for (const Vec3& v : vertices_)
+    for (const Vec3& v : vertices)
     {
-        size = std::max(size, (v - vertices_[0]).norm());
+        size = std::max(size, (v - vertices[0]).norm());
     }
     if (!(size > 0) || !std::isfinite(size))
     {
@@ -45,15 +50,14 @@ ConvexPolyhedron::ConvexPolyhedron
     }
     const double tol = geometryTolerance*size;
 
+    std::vector<Plane> planes;
+    planes.reserve(faceLoops.size());
     for (const auto& loop : faceLoops)
     {
         if (loop.size() < 3)
         {
             throw Error("a face has fewer than 3 vertices", "points");
         }
-        Face f;
-        f.begin = static_cast<int>(faceVertices_.size());
-        f.count = static_cast<int>(loop.size());
 
         // Newell's normal: robust for planar polygons
         Vec3 n = Vec3::Zero();
@@ -62,13 +66,12 @@ ConvexPolyhedron::ConvexPolyhedron
         {
             const int a = loop[k];
             const int b = loop[(k + 1) % loop.size()];
-            if (a < 0 || b < 0 || a >= int(vertices_.size()) || b >= int(vertices_.size()))
+            if (a < 0 || b < 0 || a >= int(vertices.size()) || b >= int(vertices.size()))
             {
                 throw Error("face refers to a vertex that does not exist", "points");
             }
-            n += vertices_[a].cross(vertices_[b]);
-            c += vertices_[a];
-            faceVertices_.push_back(a);
+            n += vertices[a].cross(vertices[b]);
+            c += vertices[a];
         }
         c /= double(loop.size());
         const double nn = n.norm();
@@ -76,22 +79,23 @@ ConvexPolyhedron::ConvexPolyhedron
         {
             throw Error("a face has zero area", "points");
         }
+        Plane f;
         f.normal = n/nn;
         f.offset = f.normal.dot(c);
         for (int a : loop)
         {
-            if (std::abs(f.normal.dot(vertices_[a]) - f.offset) > tol)
+            if (std::abs(f.normal.dot(vertices[a]) - f.offset) > tol)
             {
                 throw Error("a face is not planar", "points");
             }
         }
-        faces_.push_back(f);
+        planes.push_back(f);
     }
 
     // Convex, with outward normals: every vertex on the inner side of every face
-    for (const Face& f : faces_)
+    for (const Plane& f : planes)
     {
-        for (const Vec3& v : vertices_)
+        for (const Vec3& v : vertices)
         {
             if (f.normal.dot(v) - f.offset > tol)
             {
@@ -104,73 +108,73 @@ ConvexPolyhedron::ConvexPolyhedron
         }
     }
 
-    buildTopology();
+    // Edges and adjacency: shared with every polyhedron of these loops
+    topology_ = PolyhedronTopology::shared(int(vertices.size()), faceLoops);
+
+    allocateGeometry();
+    std::copy(vertices.begin(), vertices.end(), vertexData());
+    std::copy(planes.begin(), planes.end(), planeData());
 }
 
 
-void ConvexPolyhedron::buildTopology()
+void ConvexPolyhedron::allocateGeometry()
 {
-    // Each directed edge a->b once; its reverse b->a in exactly one other face
-    std::map<std::pair<int, int>, int> directed;
-    for (int f = 0; f < int(faces_.size()); ++f)
-    {
-        for (int k = 0; k < faces_[f].count; ++k)
-        {
-            const int a = faceVertex(f, k);
-            const int b = faceVertex(f, (k + 1) % faces_[f].count);
-            if (!directed.emplace(std::make_pair(a, b), f).second)
-            {
-                throw Error("the surface is not a closed oriented polyhedron", "points");
-            }
-        }
-    }
+    static_assert(sizeof(Vec3) % alignof(Plane) == 0, "planes after the vertices stay aligned");
+    static_assert(alignof(Plane) <= alignof(std::max_align_t), "new[] aligns the block");
 
-    edges_.clear();
-    edgeFaces_.clear();
-    for (const auto& d : directed)
-    {
-        const int a = d.first.first;
-        const int b = d.first.second;
-        const auto rev = directed.find(std::make_pair(b, a));
-        if (rev == directed.end())
-        {
-            throw Error("the surface is not closed (an edge has one face)", "points");
-        }
-        if (a < b)
-        {
-            edges_.push_back({a, b});
-            edgeFaces_.push_back({d.second, rev->second});
-        }
-    }
+    const std::size_t nV = topology_->nVertices();
+    const std::size_t nF = topology_->nFaces();
+    geometry_.reset(new std::byte[nV*sizeof(Vec3) + nF*sizeof(Plane)]);
+    // Start the objects' lifetimes in the raw block, one by one (an array
+    // placement-new may add a cookie); values set by the caller
+    std::byte* p = geometry_.get();
+    for (std::size_t v = 0; v < nV; ++v, p += sizeof(Vec3)) new (p) Vec3;
+    for (std::size_t f = 0; f < nF; ++f, p += sizeof(Plane)) new (p) Plane;
+}
 
-    std::vector<int> degree(vertices_.size(), 0);
-    for (const auto& e : edges_)
-    {
-        ++degree[e[0]];
-        ++degree[e[1]];
-    }
-    vertexEdgeStart_.assign(vertices_.size() + 1, 0);
-    for (std::size_t v = 0; v < vertices_.size(); ++v)
-    {
-        if (degree[v] < 3)
-        {
-            throw Error("a vertex belongs to fewer than 3 edges (unused or degenerate vertex)", "points");
-        }
-        vertexEdgeStart_[v + 1] = vertexEdgeStart_[v] + degree[v];
-    }
-    vertexEdges_.assign(vertexEdgeStart_.back(), -1);
-    std::vector<int> fill(vertexEdgeStart_.begin(), vertexEdgeStart_.end() - 1);
-    for (int e = 0; e < int(edges_.size()); ++e)
-    {
-        vertexEdges_[fill[edges_[e][0]]++] = e;
-        vertexEdges_[fill[edges_[e][1]]++] = e;
-    }
 
-    // Euler characteristic of a sphere
-    if (int(vertices_.size()) - int(edges_.size()) + int(faces_.size()) != 2)
+ConvexPolyhedron::ConvexPolyhedron(const ConvexPolyhedron& P)
+:
+    topology_(P.topology_)
+{
+    if (P.geometry_)
     {
-        throw Error("the surface is not a closed polyhedron (V - E + F != 2)", "points");
+        allocateGeometry();
+        std::copy(P.vertexData(), P.vertexData() + topology_->nVertices(), vertexData());
+        std::copy(P.planeData(), P.planeData() + topology_->nFaces(), planeData());
     }
+}
+
+
+ConvexPolyhedron& ConvexPolyhedron::operator=(const ConvexPolyhedron& P)
+{
+    if (this != &P)
+    {
+        ConvexPolyhedron copy(P);
+        *this = std::move(copy);
+    }
+    return *this;
+}
+
+
+ConvexPolyhedron::ConvexPolyhedron(ConvexPolyhedron&& P) noexcept
+:
+    topology_(std::move(P.topology_)),
+    geometry_(std::move(P.geometry_))
+{
+    P.topology_ = PolyhedronTopology::empty();
+}
+
+
+ConvexPolyhedron& ConvexPolyhedron::operator=(ConvexPolyhedron&& P) noexcept
+{
+    if (this != &P)
+    {
+        topology_ = std::move(P.topology_);
+        geometry_ = std::move(P.geometry_);
+        P.topology_ = PolyhedronTopology::empty();
+    }
+    return *this;
 }
 
 
@@ -259,14 +263,16 @@ double ConvexPolyhedron::volume() const
 
 double ConvexPolyhedron::area() const
 {
+    const auto V = vertices();
+    const auto& faceVertices = topology_->faceVertices();
     double A = 0;
-    for (const Face& f : faces_)
+    for (const Face& f : faces())
     {
         Vec3 n = Vec3::Zero();
         for (int k = 0; k < f.count; ++k)
         {
-            n += vertices_[faceVertices_[f.begin + k]]
-                .cross(vertices_[faceVertices_[f.begin + (k + 1) % f.count]]);
+            n += V[faceVertices[f.begin + k]]
+                .cross(V[faceVertices[f.begin + (k + 1) % f.count]]);
         }
         A += 0.5*n.norm();
     }
@@ -277,10 +283,10 @@ double ConvexPolyhedron::area() const
 double ConvexPolyhedron::minWidth() const
 {
     double w = std::numeric_limits<double>::max();
-    for (const Face& f : faces_)
+    for (const Face& f : faces())
     {
         double lo = std::numeric_limits<double>::max();
-        for (const Vec3& v : vertices_)
+        for (const Vec3& v : vertices())
         {
             lo = std::min(lo, f.normal.dot(v));
         }
@@ -292,21 +298,24 @@ double ConvexPolyhedron::minWidth() const
 
 double ConvexPolyhedron::exteriorAngle(int e) const
 {
-    const double c = faces_[edgeFaces_[e][0]].normal.dot(faces_[edgeFaces_[e][1]].normal);
+    const Plane* planes = planeData();
+    const auto& ef = edgeFaces()[e];
+    const double c = planes[ef[0]].normal.dot(planes[ef[1]].normal);
     return std::acos(std::max(-1.0, std::min(1.0, c)));
 }
 
 
 Vec3 ConvexPolyhedron::edgeInwardInFace(int e, int side) const
 {
-    const Face& f = faces_[edgeFaces_[e][side]];
-    const Vec3& a = vertices_[edges_[e][0]];
-    const Vec3& b = vertices_[edges_[e][1]];
+    const Face f = faces()[edgeFaces()[e][side]];
+    const auto V = vertices();
+    const Vec3& a = V[edges()[e][0]];
+    const Vec3& b = V[edges()[e][1]];
     const Vec3 t = (b - a).normalized();
     Vec3 w = f.normal.cross(t).normalized();
 
     Vec3 c = Vec3::Zero();
-    for (int k = 0; k < f.count; ++k) c += vertices_[faceVertices_[f.begin + k]];
+    for (int k = 0; k < f.count; ++k) c += V[faceVertices()[f.begin + k]];
     c /= double(f.count);
     if (w.dot(c - 0.5*(a + b)) < 0)
     {
@@ -322,10 +331,12 @@ ConvexPolyhedron ConvexPolyhedron::offset(double d) const
     // that lie inside all of them. Faces have few planes, so brute force is
     // cheap and needs no dual hull.
     double size = 0;
-    for (const Vec3& v : vertices_) size = std::max(size, (v - vertices_[0]).norm());
+    const auto V = vertices();
+    for (const Vec3& v : V) size = std::max(size, (v - V[0]).norm());
     const double tol = geometryTolerance*(size + d);
 
-    const int F = static_cast<int>(faces_.size());
+    const Plane* planes = planeData();
+    const int F = topology_->nFaces();
     std::vector<Vec3> points;
     for (int i = 0; i < F; ++i)
     {
@@ -334,9 +345,9 @@ ConvexPolyhedron ConvexPolyhedron::offset(double d) const
             for (int k = j + 1; k < F; ++k)
             {
                 Mat3 A;
-                A.row(0) = faces_[i].normal.transpose();
-                A.row(1) = faces_[j].normal.transpose();
-                A.row(2) = faces_[k].normal.transpose();
+                A.row(0) = planes[i].normal.transpose();
+                A.row(1) = planes[j].normal.transpose();
+                A.row(2) = planes[k].normal.transpose();
                 const double det = A.determinant();
                 if (std::abs(det) < 1e-10)
                 {
@@ -344,14 +355,15 @@ ConvexPolyhedron ConvexPolyhedron::offset(double d) const
                 }
                 const Vec3 rhs
                 (
-                    faces_[i].offset + d,
-                    faces_[j].offset + d,
-                    faces_[k].offset + d
+                    planes[i].offset + d,
+                    planes[j].offset + d,
+                    planes[k].offset + d
                 );
                 const Vec3 x = A.partialPivLu().solve(rhs);
                 bool inside = true;
-                for (const Face& f : faces_)
+                for (int m = 0; m < F; ++m)
                 {
+                    const Plane& f = planes[m];
                     if (f.normal.dot(x) - f.offset - d > tol)
                     {
                         inside = false;
@@ -372,14 +384,16 @@ ConvexPolyhedron ConvexPolyhedron::offset(double d) const
 ConvexPolyhedron ConvexPolyhedron::transformed(const Mat3& R, const Vec3& t) const
 {
     ConvexPolyhedron P(*this);
-    for (Vec3& v : P.vertices_)
+    Vec3* V = P.vertexData();
+    for (int v = 0; v < topology_->nVertices(); ++v)
     {
-        v = R*v + t;
+        V[v] = R*V[v] + t;
     }
-    for (Face& f : P.faces_)
+    Plane* planes = P.planeData();
+    for (int f = 0; f < topology_->nFaces(); ++f)
     {
-        f.normal = R*f.normal;
-        f.offset = f.normal.dot(P.vertices_[P.faceVertices_[f.begin]]);
+        planes[f].normal = R*planes[f].normal;
+        planes[f].offset = planes[f].normal.dot(V[faceVertex(f, 0)]);
     }
     return P;
 }
@@ -387,13 +401,8 @@ ConvexPolyhedron ConvexPolyhedron::transformed(const Mat3& R, const Vec3& t) con
 
 std::size_t ConvexPolyhedron::heapBytes() const
 {
-    return vertices_.capacity()*sizeof(Vec3)
-        + edges_.capacity()*sizeof(edges_[0])
-        + edgeFaces_.capacity()*sizeof(edgeFaces_[0])
-        + faceVertices_.capacity()*sizeof(int)
-        + faces_.capacity()*sizeof(Face)
-        + vertexEdgeStart_.capacity()*sizeof(int)
-        + vertexEdges_.capacity()*sizeof(int);
+    if (!geometry_) return 0;
+    return topology_->nVertices()*sizeof(Vec3) + topology_->nFaces()*sizeof(Plane);
 }
 
 } // namespace iceDEM

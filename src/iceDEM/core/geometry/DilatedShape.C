@@ -71,53 +71,48 @@ DilatedShape::DilatedShape
     core_ = coreInput.transformed(Rt, -Rt*centroidInput_);
     outer_ = outerInput.transformed(Rt, -Rt*centroidInput_);
 
-    // Precomputed contact data, principal frame
+    // Bounding sphere about the centroid
     double rMax = 0;
-    Vec3 lo = core_.vertices()[0], hi = lo;
     for (const Vec3& v : core_.vertices())
     {
         rMax = std::max(rMax, v.norm());
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
     }
     boundingRadius_ = rMax + radius_;
-    coreHalfExtents_ = 0.5*(hi - lo);
 
+    // Edge lengths, exactly as normalized() computes the norm it divides by
     const int nE = static_cast<int>(core_.edges().size());
-    edgeDirection_.resize(nE);
+    edgeLength_.resize(nE);
     for (int e = 0; e < nE; ++e)
     {
         const auto& ed = core_.edges()[e];
-        edgeDirection_[e] = (core_.vertices()[ed[1]] - core_.vertices()[ed[0]]).normalized();
+        const Vec3 d = core_.vertices()[ed[1]] - core_.vertices()[ed[0]];
+        edgeLength_[e] = std::sqrt(d.squaredNorm());
     }
+}
 
-    // Edge of each face loop slot: the edge at its first vertex that ends
-    // at the next one
-    faceEdge_.assign(core_.faceVertices().size(), -1);
-    for (int f = 0; f < int(core_.faces().size()); ++f)
+
+Vec3 DilatedShape::coreHalfExtents() const
+{
+    Vec3 lo = core_.vertices()[0], hi = lo;
+    for (const Vec3& v : core_.vertices())
     {
-        const auto& face = core_.faces()[f];
-        for (int k = 0; k < face.count; ++k)
-        {
-            const int a = core_.faceVertex(f, k);
-            const int b = core_.faceVertex(f, (k + 1) % face.count);
-            for (int m = core_.vertexEdgeBegin(a); m < core_.vertexEdgeEnd(a); ++m)
-            {
-                if (core_.otherVertex(core_.vertexEdges()[m], a) == b)
-                {
-                    faceEdge_[face.begin + k] = core_.vertexEdges()[m];
-                }
-            }
-        }
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
     }
+    return 0.5*(hi - lo);
 }
 
 
 std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes() + outer_.heapBytes()
-        + edgeDirection_.capacity()*sizeof(Vec3)
-        + faceEdge_.capacity()*sizeof(int);
+        + edgeLength_.capacity()*sizeof(double);
+}
+
+
+std::size_t DilatedShape::sharedHeapBytes() const
+{
+    return core_.topology().heapBytes() + outer_.topology().heapBytes();
 }
 
 } // namespace iceDEM

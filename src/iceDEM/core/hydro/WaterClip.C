@@ -139,7 +139,7 @@ SubmergedVolume submergedVolume
     result.volume = 0;
     result.centroid = x;
 
-    const std::vector<Vec3>& V = P.vertices();
+    const auto V = P.vertices();
     const int nv = static_cast<int>(V.size());
     if (nv == 0)
     {
@@ -226,7 +226,7 @@ bool submergedFace
     out.nVertices = 0;
     out.area = 0;
 
-    const std::vector<Vec3>& V = P.vertices();
+    const auto V = P.vertices();
 
     // Sutherland-Hodgman against the half-space z < level (world frame)
     Vec3 prev = R*V[P.faceVertex(f, n - 1)] + x;
