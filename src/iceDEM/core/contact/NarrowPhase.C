@@ -638,6 +638,81 @@ public:
         }
         return true;
     }
+
+    //- True if a window of the pair fails now by a margin that the motion
+    //  allowed to the list cannot close, i.e. the pair gives no contact as
+    //  long as the list holds. Its windows failing before Collector::add, it
+    //  does not change the closest pair either: the list need not hold it.
+    //  Windows bounded here: those of a vertex's position in the other
+    //  body's frame, P (3a, 3b: the sides of the face and the face's plane;
+    //  3d, 3e: the ends of the edge), which are distances along fixed
+    //  directions of that frame. While the list holds (m_A + m_B <
+    //  featureSkin - eta) the vertex moves by at most m_V and the point of
+    //  the other body O at P by at most m_O max(1, |P|/R_O), so P moves by
+    //  less than featureSkin max(1, |P|/R_O) - eta; that margin, and eta
+    //  for the rounding. p: vertexAInB(a) for 3a, vertexBInA(b) for 3b
+    bool outsideWindow(PairKind kind, int a, int b, const Vec3& p, double skin) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        switch (kind)
+        {
+            case vertexFaceAB: return outsideFace(SB_, b, p, skin);
+            case faceVertexAB: return outsideFace(SA_, a, p, skin);
+            case vertexEdgeAB:
+            {
+                const Vec3& e0 = wB_[EB[b][0]];
+                return outsideEdge
+                (
+                    wA_[a], e0, wB_[EB[b][1]] - e0,
+                    skin*std::max(1.0, vertexAInB(a).norm()/SB_.boundingRadius())
+                );
+            }
+            case edgeVertexAB:
+            {
+                const Vec3& e0 = wA_[EA[a][0]];
+                return outsideEdge
+                (
+                    wB_[b], e0, wA_[EA[a][1]] - e0,
+                    skin*std::max(1.0, vertexBInA(b).norm()/SA_.boundingRadius())
+                );
+            }
+            default: return false;
+        }
+    }
+
+    //- Point p (principal frame of S) behind the plane of face f, or
+    //  outside one of its sides, by at least skin max(1, |p|/R): the window
+    //  of vertexFace and faceVertex (dist > 0, insideFace) fails while the
+    //  list holds. The side distances are those insideFace computes: (q -
+    //  v_k) . (t x n), with q - p along n, which is normal to t x n
+    static bool outsideFace(const DilatedShape& S, int f, const Vec3& p, double skin)
+    {
+        const ConvexPolyhedron& P = S.core();
+        const auto& face = P.faces()[f];
+        const double margin = skin*std::max(1.0, p.norm()/S.boundingRadius());
+        const double dist = face.normal.dot(p) - face.offset;
+        if (-dist >= margin) return true;
+        const Vec3 q = p - dist*face.normal;
+        for (int k = 0; k < face.count; ++k)
+        {
+            if ((q - P.vertices()[P.faceVertex(f, k)]).dot(S.faceEdgeNormal(f, k)) >= margin)
+            {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    //- Point p beyond an end of the edge e0 + t de by at least margin (its
+    //  projection on the edge's line): the window of vertexEdge and
+    //  edgeVertex (0 < t < 1) fails while the list holds
+    static bool outsideEdge(const Vec3& p, const Vec3& e0, const Vec3& de, double margin)
+    {
+        const double len = std::sqrt(de.squaredNorm());
+        const double along = (p - e0).dot(de)/len;
+        return along <= -margin || along >= len + margin;
+    }
 };
 
 
@@ -647,22 +722,25 @@ class ListBuilder
     PairSearch& search_;
     FeaturePairList* list_;     //!< null: not recording (none, or overflowed)
     double reach_;
+    double skin_;
 
 public:
 
-    ListBuilder(PairSearch& search, FeaturePairList* list, double reach)
+    ListBuilder(PairSearch& search, FeaturePairList* list, double reach, double skin)
     :
-        search_(search), list_(list), reach_(reach)
+        search_(search), list_(list), reach_(reach), skin_(skin)
     {
         if (list_) list_->count = 0;
     }
 
     bool recording() const { return list_ != nullptr; }
 
-    //- Keep the pair if it is near (before its evaluation: same order)
+    //- Keep the pair if it is near and its windows may pass while the list
+    //  holds (before its evaluation: same order)
     void visit(PairKind kind, int a, int b, const Vec3& p = Vec3::Zero())
     {
         if (!list_ || !search_.near(kind, a, b, p, reach_)) return;
+        if (search_.outsideWindow(kind, a, b, p, skin_)) return;
         if (list_->count == FeaturePairList::capacity)
         {
             list_->count = -1;  // too many: this pair goes without a list
@@ -772,7 +850,7 @@ int findContacts
             list->qA = A.q;
             list->qB = B.q;
         }
-        ListBuilder builder(search, list, listReach);
+        ListBuilder builder(search, list, listReach, s.featureSkin);
 
         // 2. Features inside the slab of the best axis (exact culling: a
         //    point farther than listReach from the other core's slab cannot
