@@ -659,6 +659,7 @@ public:
         {
             case vertexFaceAB: return outsideFace(SB_, b, p, skin);
             case faceVertexAB: return outsideFace(SA_, a, p, skin);
+            case edgeEdgeAB: return linesCrossOutside(a, b, skin);
             case vertexEdgeAB:
             {
                 const Vec3& e0 = wB_[EB[b][0]];
@@ -679,6 +680,68 @@ public:
             }
             default: return false;
         }
+    }
+
+    //- The closest points X (on a), Y (on b) of the lines of edge a of A
+    //  and edge b of B lie outside edge a or edge b by more than the motion
+    //  the list allows can bring them back: the window of edgeEdge (0 < sa,
+    //  tb < 1) fails while the list holds. With u1, u2 the edges' unit
+    //  directions, s the sine of their angle and sigma the position of X
+    //  along a from its first end E0, the signed distance of E0 from the
+    //  plane through line b with normal m = (u1 - (u1.u2) u2)/s is -sigma s
+    //  (X - Y is normal to both lines). Relative to A, B turns by at most
+    //  phi = chord_A + chord_B < featureSkin/min(R_A, R_B) (chord = 2
+    //  sin(angle/2) <= m/R), which turns m by at most 4 phi/s (|u1 - (u1.u2)
+    //  u2| changes by at most 2 phi, and |a/|a| - b/|b|| <= 2 |a - b|/|b|),
+    //  and Y, a point of B, moves by less than featureSkin max(1, |Y -
+    //  x_A|/R_A, |Y - x_B|/R_B): the distance changes by less than |E0 - Y|
+    //  4 phi/s + that, |E0 - Y| <= |sigma| + |X - Y|. Alike for the other end
+    //  of a, and for the ends of b (in B's frame, X moving). The rounding of
+    //  sa and tb (about 4 eps/s^2 of the edge length for s >= 1e-4) and of
+    //  these bounds is covered by listTolerance (R_A + R_B)
+    bool linesCrossOutside(int a, int b, double skin) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        const Vec3& p1 = wA_[EA[a][0]];
+        const Vec3& p2 = wB_[EB[b][0]];
+        const Vec3 d1 = wA_[EA[a][1]] - p1;
+        const Vec3 d2 = wB_[EB[b][1]] - p2;
+        const double L1 = std::sqrt(d1.squaredNorm());
+        const double L2 = std::sqrt(d2.squaredNorm());
+        const Vec3 u1 = d1/L1;
+        const Vec3 u2 = d2/L2;
+        const double sinAngle = std::sqrt(u1.cross(u2).squaredNorm());
+        if (!(sinAngle > 0.01)) return false;
+        const double c = u1.dot(u2);
+        const Vec3 w = p2 - p1;
+        const double s2 = sinAngle*sinAngle;
+        const double sigma = (u1.dot(w) - c*u2.dot(w))/s2;
+        const double tau = (c*u1.dot(w) - u2.dot(w))/s2;
+        const Vec3 X = p1 + sigma*u1;
+        const Vec3 Y = p2 + tau*u2;
+        const double gap = std::sqrt((X - Y).squaredNorm());
+        const double RA = SA_.boundingRadius();
+        const double RB = SB_.boundingRadius();
+        const double turn = 4*skin/(std::min(RA, RB)*sinAngle);
+        const double slack = listTolerance*(RA + RB);
+        auto moves = [&](const Vec3& y)
+        {
+            return skin*std::max
+            (
+                1.0,
+                std::max(std::sqrt((y - A_.x).squaredNorm())/RA, std::sqrt((y - B_.x).squaredNorm())/RB)
+            );
+        };
+        // Ends of a against the plane through line b (Y moving), then the
+        // ends of b against the plane through line a (X moving)
+        const double mY = moves(Y) + slack;
+        if (-sigma*sinAngle >= (std::abs(sigma) + gap)*turn + mY) return true;
+        if ((sigma - L1)*sinAngle >= (std::abs(sigma - L1) + gap)*turn + mY) return true;
+        const double mX = moves(X) + slack;
+        if (-tau*sinAngle >= (std::abs(tau) + gap)*turn + mX) return true;
+        if ((tau - L2)*sinAngle >= (std::abs(tau - L2) + gap)*turn + mX) return true;
+        return false;
     }
 
     //- Point p (principal frame of S) behind the plane of face f, or
