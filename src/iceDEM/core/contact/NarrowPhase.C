@@ -426,9 +426,15 @@ public:
         {
             return false;
         }
-        const double sa = (a12*b2 - x.a22*b1)/den;
-        const double tb = (x.a11*b2 - a12*b1)/den;
-        if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return false;
+        // sa = na/den and tb = nb/den in (0, 1), tested before dividing
+        // (den > 0 here): for positive finite n and den, n < den if and
+        // only if the rounded n/den < 1
+        const double na = a12*b2 - x.a22*b1;
+        if (!(na > 0 && na < den)) return false;
+        const double nb = x.a11*b2 - a12*b1;
+        if (!(nb > 0 && nb < den)) return false;
+        const double sa = na/den;
+        const double tb = nb/den;
         x.c1 = p1 + sa*x.d1;
         x.diff = p2 + tb*x.d2 - x.c1;
         return true;
@@ -487,11 +493,11 @@ public:
         const double dist2 = x.diff.squaredNorm();
         const double rch = reach();
         if (dist2 >= rch*rch) return;
-        const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
         const Vec3 n = x.diff/dist;
         if (!inEdgeCone(SA_, a, RAt_*n, x.parallel) || !inEdgeCone(SB_, b, -(RBt_*n), x.parallel)) return;
+        const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
@@ -855,20 +861,6 @@ int findContacts
         axes[nAxes++] = Vec3::UnitX();
     }
 
-    // The feature-pair list holds while the cores have moved less than
-    // featureSkin relative to each other since it was built (a bound that
-    // depends on the present poses only, not on the path)
-    if (!(s.featureSkin > 0)) list = nullptr;
-    bool useList = false;
-    if (list && list->count >= 0)
-    {
-        const double moved =
-            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
-          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
-        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-        useList = moved < s.featureSkin - eta;
-    }
-
     double bestGap = -std::numeric_limits<double>::max();
     Vec3 best = axes[0];
     double bestMaxA = 0, bestMinB = 0;
@@ -892,6 +884,20 @@ int findContacts
             bestMaxA = maxA;
             bestMinB = minB;
         }
+    }
+
+    // The feature-pair list holds while the cores have moved less than
+    // featureSkin relative to each other since it was built (a bound that
+    // depends on the present poses only, not on the path)
+    if (!(s.featureSkin > 0)) list = nullptr;
+    bool useList = false;
+    if (list && list->count >= 0)
+    {
+        const double moved =
+            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
+          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+        useList = moved < s.featureSkin - eta;
     }
 
     PairSearch search(A, B, s, out, maxOut);
