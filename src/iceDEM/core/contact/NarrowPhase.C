@@ -844,7 +844,34 @@ int findContacts
     const Vec3* wA = A.vertices;
     const Vec3* wB = B.vertices;
 
-    // 1. Separating axes: the hint, then the line of centres
+    // The feature-pair list holds while the cores have moved less than
+    // featureSkin relative to each other since it was built (a bound that
+    // depends on the present poses only, not on the path); evaluated when
+    // the first axis does not separate the cores
+    if (!(s.featureSkin > 0)) list = nullptr;
+    int listHolds = -1;
+    auto useList = [&]()
+    {
+        if (listHolds < 0)
+        {
+            listHolds = 0;
+            if (list && list->count >= 0)
+            {
+                const double moved =
+                    motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
+                  + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+                const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+                listHolds = moved < s.featureSkin - eta;
+            }
+        }
+        return listHolds == 1;
+    };
+
+    // 1. Separating axes: the hint, then the line of centres (not while the
+    //    list holds: the listed pairs give the contacts of a full search
+    //    whatever the axes say, which only save work, and the hint, the
+    //    last contact normal or closest pair's direction, is the axis that
+    //    separates such a pair)
     Vec3 axes[2];
     int nAxes = 0;
     if (axis.squaredNorm() > 0.5)
@@ -866,6 +893,7 @@ int findContacts
     double bestMaxA = 0, bestMinB = 0;
     for (int k = 0; k < nAxes; ++k)
     {
+        if (k > 0 && useList()) break;
         const Vec3& a = axes[k];
         double maxA = -std::numeric_limits<double>::max();
         double minB = std::numeric_limits<double>::max();
@@ -886,24 +914,10 @@ int findContacts
         }
     }
 
-    // The feature-pair list holds while the cores have moved less than
-    // featureSkin relative to each other since it was built (a bound that
-    // depends on the present poses only, not on the path)
-    if (!(s.featureSkin > 0)) list = nullptr;
-    bool useList = false;
-    if (list && list->count >= 0)
-    {
-        const double moved =
-            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
-          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
-        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-        useList = moved < s.featureSkin - eta;
-    }
-
     PairSearch search(A, B, s, out, maxOut);
     Collector& col = search.col;
 
-    if (useList)
+    if (useList())
     {
         // 2-3. The listed feature pairs, in the full search's order
         search.evaluateList(list->entries, list->count);
