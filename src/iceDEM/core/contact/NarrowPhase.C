@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 
@@ -121,6 +122,53 @@ inline bool insideFace
         }
     }
     return true;
+}
+
+
+//- Ask the processor to bring [p, p + bytes) into the cache (a hint: no
+//  effect on any result)
+inline void prefetchRange(const void* p, std::size_t bytes)
+{
+    const std::uintptr_t line = 64;
+    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(p) & ~(line - 1);
+    const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(p) + bytes;
+    for (std::uintptr_t a = begin; a < end; a += line)
+    {
+        __builtin_prefetch(reinterpret_cast<const void*>(a));
+    }
+}
+
+template<class T>
+inline void prefetchVector(const std::vector<T>& v)
+{
+    prefetchRange(v.data(), v.size()*sizeof(T));
+}
+
+//- Start the cache misses of the core data of S that a list walk reads, all
+//  at once: the core's geometry block (vertices, then face planes), the
+//  edge lengths (edge directions) and the shared topology (face loops,
+//  edges, adjacency; shared by all floes of the same shape of prism, so
+//  usually cached already). The walk reads them one after the other through
+//  indices (a face, then its loop, then its vertices and edges), so that
+//  otherwise every miss waits for the one before it
+inline void prefetchShape(const DilatedShape& S)
+{
+    const ConvexPolyhedron& P = S.core();
+    const PolyhedronTopology& T = P.topology();
+    if (T.nFaces() == 0 || T.nEdges() == 0) return;
+    prefetchRange
+    (
+        P.vertices().data(),
+        T.nVertices()*sizeof(Vec3) + T.nFaces()*sizeof(ConvexPolyhedron::Plane)
+    );
+    prefetchVector(S.edgeLengths());
+    prefetchVector(T.faces());
+    prefetchVector(T.faceVertices());
+    prefetchVector(T.faceEdges());
+    prefetchVector(T.edges());
+    prefetchVector(T.edgeFaces());
+    prefetchVector(T.vertexEdgeStart());
+    prefetchVector(T.vertexEdges());
 }
 
 
@@ -426,9 +474,15 @@ public:
         {
             return false;
         }
-        const double sa = (a12*b2 - x.a22*b1)/den;
-        const double tb = (x.a11*b2 - a12*b1)/den;
-        if (!(sa > 0 && sa < 1 && tb > 0 && tb < 1)) return false;
+        // sa = na/den and tb = nb/den in (0, 1), tested before dividing
+        // (den > 0 here): for positive finite n and den, n < den if and
+        // only if the rounded n/den < 1
+        const double na = a12*b2 - x.a22*b1;
+        if (!(na > 0 && na < den)) return false;
+        const double nb = x.a11*b2 - a12*b1;
+        if (!(nb > 0 && nb < den)) return false;
+        const double sa = na/den;
+        const double tb = nb/den;
         x.c1 = p1 + sa*x.d1;
         x.diff = p2 + tb*x.d2 - x.c1;
         return true;
@@ -487,11 +541,11 @@ public:
         const double dist2 = x.diff.squaredNorm();
         const double rch = reach();
         if (dist2 >= rch*rch) return;
-        const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
         const Vec3 n = x.diff/dist;
         if (!inEdgeCone(SA_, a, RAt_*n, x.parallel) || !inEdgeCone(SB_, b, -(RBt_*n), x.parallel)) return;
+        const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
@@ -638,6 +692,144 @@ public:
         }
         return true;
     }
+
+    //- True if a window of the pair fails now by a margin that the motion
+    //  allowed to the list cannot close, i.e. the pair gives no contact as
+    //  long as the list holds. Its windows failing before Collector::add, it
+    //  does not change the closest pair either: the list need not hold it.
+    //  Windows bounded here: those of a vertex's position in the other
+    //  body's frame, P (3a, 3b: the sides of the face and the face's plane;
+    //  3d, 3e: the ends of the edge), which are distances along fixed
+    //  directions of that frame. While the list holds (m_A + m_B <
+    //  featureSkin - eta) the vertex moves by at most m_V and the point of
+    //  the other body O at P by at most m_O max(1, |P|/R_O), so P moves by
+    //  less than featureSkin max(1, |P|/R_O) - eta; that margin, and eta
+    //  for the rounding. p: vertexAInB(a) for 3a, vertexBInA(b) for 3b
+    bool outsideWindow(PairKind kind, int a, int b, const Vec3& p, double skin) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        switch (kind)
+        {
+            case vertexFaceAB: return outsideFace(SB_, b, p, skin);
+            case faceVertexAB: return outsideFace(SA_, a, p, skin);
+            case edgeEdgeAB: return linesCrossOutside(a, b, skin);
+            case vertexEdgeAB:
+            {
+                const Vec3& e0 = wB_[EB[b][0]];
+                return outsideEdge
+                (
+                    wA_[a], e0, wB_[EB[b][1]] - e0,
+                    skin*std::max(1.0, vertexAInB(a).norm()/SB_.boundingRadius())
+                );
+            }
+            case edgeVertexAB:
+            {
+                const Vec3& e0 = wA_[EA[a][0]];
+                return outsideEdge
+                (
+                    wB_[b], e0, wA_[EA[a][1]] - e0,
+                    skin*std::max(1.0, vertexBInA(b).norm()/SA_.boundingRadius())
+                );
+            }
+            default: return false;
+        }
+    }
+
+    //- The closest points X (on a), Y (on b) of the lines of edge a of A
+    //  and edge b of B lie outside edge a or edge b by more than the motion
+    //  the list allows can bring them back: the window of edgeEdge (0 < sa,
+    //  tb < 1) fails while the list holds. With u1, u2 the edges' unit
+    //  directions, s the sine of their angle and sigma the position of X
+    //  along a from its first end E0, the signed distance of E0 from the
+    //  plane through line b with normal m = (u1 - (u1.u2) u2)/s is -sigma s
+    //  (X - Y is normal to both lines). Relative to A, B turns by at most
+    //  phi = chord_A + chord_B < featureSkin/min(R_A, R_B) (chord = 2
+    //  sin(angle/2) <= m/R), which turns m by at most 4 phi/s (|u1 - (u1.u2)
+    //  u2| changes by at most 2 phi, and |a/|a| - b/|b|| <= 2 |a - b|/|b|),
+    //  and Y, a point of B, moves by less than featureSkin max(1, |Y -
+    //  x_A|/R_A, |Y - x_B|/R_B): the distance changes by less than |E0 - Y|
+    //  4 phi/s + that, |E0 - Y| <= |sigma| + |X - Y|. Alike for the other end
+    //  of a, and for the ends of b (in B's frame, X moving). The rounding of
+    //  sa and tb (about 4 eps/s^2 of the edge length for s >= 1e-4) and of
+    //  these bounds is covered by listTolerance (R_A + R_B)
+    bool linesCrossOutside(int a, int b, double skin) const
+    {
+        const auto& EA = PA_.edges();
+        const auto& EB = PB_.edges();
+        const Vec3& p1 = wA_[EA[a][0]];
+        const Vec3& p2 = wB_[EB[b][0]];
+        const Vec3 d1 = wA_[EA[a][1]] - p1;
+        const Vec3 d2 = wB_[EB[b][1]] - p2;
+        const double L1 = std::sqrt(d1.squaredNorm());
+        const double L2 = std::sqrt(d2.squaredNorm());
+        const Vec3 u1 = d1/L1;
+        const Vec3 u2 = d2/L2;
+        const double sinAngle = std::sqrt(u1.cross(u2).squaredNorm());
+        if (!(sinAngle > 0.01)) return false;
+        const double c = u1.dot(u2);
+        const Vec3 w = p2 - p1;
+        const double s2 = sinAngle*sinAngle;
+        const double sigma = (u1.dot(w) - c*u2.dot(w))/s2;
+        const double tau = (c*u1.dot(w) - u2.dot(w))/s2;
+        const Vec3 X = p1 + sigma*u1;
+        const Vec3 Y = p2 + tau*u2;
+        const double gap = std::sqrt((X - Y).squaredNorm());
+        const double RA = SA_.boundingRadius();
+        const double RB = SB_.boundingRadius();
+        const double turn = 4*skin/(std::min(RA, RB)*sinAngle);
+        const double slack = listTolerance*(RA + RB);
+        auto moves = [&](const Vec3& y)
+        {
+            return skin*std::max
+            (
+                1.0,
+                std::max(std::sqrt((y - A_.x).squaredNorm())/RA, std::sqrt((y - B_.x).squaredNorm())/RB)
+            );
+        };
+        // Ends of a against the plane through line b (Y moving), then the
+        // ends of b against the plane through line a (X moving)
+        const double mY = moves(Y) + slack;
+        if (-sigma*sinAngle >= (std::abs(sigma) + gap)*turn + mY) return true;
+        if ((sigma - L1)*sinAngle >= (std::abs(sigma - L1) + gap)*turn + mY) return true;
+        const double mX = moves(X) + slack;
+        if (-tau*sinAngle >= (std::abs(tau) + gap)*turn + mX) return true;
+        if ((tau - L2)*sinAngle >= (std::abs(tau - L2) + gap)*turn + mX) return true;
+        return false;
+    }
+
+    //- Point p (principal frame of S) behind the plane of face f, or
+    //  outside one of its sides, by at least skin max(1, |p|/R): the window
+    //  of vertexFace and faceVertex (dist > 0, insideFace) fails while the
+    //  list holds. The side distances are those insideFace computes: (q -
+    //  v_k) . (t x n), with q - p along n, which is normal to t x n
+    static bool outsideFace(const DilatedShape& S, int f, const Vec3& p, double skin)
+    {
+        const ConvexPolyhedron& P = S.core();
+        const auto& face = P.faces()[f];
+        const double margin = skin*std::max(1.0, p.norm()/S.boundingRadius());
+        const double dist = face.normal.dot(p) - face.offset;
+        if (-dist >= margin) return true;
+        const Vec3 q = p - dist*face.normal;
+        for (int k = 0; k < face.count; ++k)
+        {
+            if ((q - P.vertices()[P.faceVertex(f, k)]).dot(S.faceEdgeNormal(f, k)) >= margin)
+            {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    //- Point p beyond an end of the edge e0 + t de by at least margin (its
+    //  projection on the edge's line): the window of vertexEdge and
+    //  edgeVertex (0 < t < 1) fails while the list holds
+    static bool outsideEdge(const Vec3& p, const Vec3& e0, const Vec3& de, double margin)
+    {
+        const double len = std::sqrt(de.squaredNorm());
+        const double along = (p - e0).dot(de)/len;
+        return along <= -margin || along >= len + margin;
+    }
 };
 
 
@@ -647,22 +839,25 @@ class ListBuilder
     PairSearch& search_;
     FeaturePairList* list_;     //!< null: not recording (none, or overflowed)
     double reach_;
+    double skin_;
 
 public:
 
-    ListBuilder(PairSearch& search, FeaturePairList* list, double reach)
+    ListBuilder(PairSearch& search, FeaturePairList* list, double reach, double skin)
     :
-        search_(search), list_(list), reach_(reach)
+        search_(search), list_(list), reach_(reach), skin_(skin)
     {
         if (list_) list_->count = 0;
     }
 
     bool recording() const { return list_ != nullptr; }
 
-    //- Keep the pair if it is near (before its evaluation: same order)
+    //- Keep the pair if it is near and its windows may pass while the list
+    //  holds (before its evaluation: same order)
     void visit(PairKind kind, int a, int b, const Vec3& p = Vec3::Zero())
     {
         if (!list_ || !search_.near(kind, a, b, p, reach_)) return;
+        if (search_.outsideWindow(kind, a, b, p, skin_)) return;
         if (list_->count == FeaturePairList::capacity)
         {
             list_->count = -1;  // too many: this pair goes without a list
@@ -697,7 +892,34 @@ int findContacts
     const Vec3* wA = A.vertices;
     const Vec3* wB = B.vertices;
 
-    // 1. Separating axes: the hint, then the line of centres
+    // The feature-pair list holds while the cores have moved less than
+    // featureSkin relative to each other since it was built (a bound that
+    // depends on the present poses only, not on the path); evaluated when
+    // the first axis does not separate the cores
+    if (!(s.featureSkin > 0)) list = nullptr;
+    int listHolds = -1;
+    auto useList = [&]()
+    {
+        if (listHolds < 0)
+        {
+            listHolds = 0;
+            if (list && list->count >= 0)
+            {
+                const double moved =
+                    motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
+                  + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+                const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+                listHolds = moved < s.featureSkin - eta;
+            }
+        }
+        return listHolds == 1;
+    };
+
+    // 1. Separating axes: the hint, then the line of centres (not while the
+    //    list holds: the listed pairs give the contacts of a full search
+    //    whatever the axes say, which only save work, and the hint, the
+    //    last contact normal or closest pair's direction, is the axis that
+    //    separates such a pair)
     Vec3 axes[2];
     int nAxes = 0;
     if (axis.squaredNorm() > 0.5)
@@ -714,18 +936,11 @@ int findContacts
         axes[nAxes++] = Vec3::UnitX();
     }
 
-    // The feature-pair list holds while the cores have moved less than
-    // featureSkin relative to each other since it was built (a bound that
-    // depends on the present poses only, not on the path)
-    if (!(s.featureSkin > 0)) list = nullptr;
-    bool useList = false;
-    if (list && list->count >= 0)
+    // A pair with a list is likely to walk it: its shapes' data first
+    if (list && list->count > 0)
     {
-        const double moved =
-            motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
-          + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
-        const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-        useList = moved < s.featureSkin - eta;
+        prefetchShape(SB);
+        prefetchShape(SA);
     }
 
     double bestGap = -std::numeric_limits<double>::max();
@@ -733,6 +948,7 @@ int findContacts
     double bestMaxA = 0, bestMinB = 0;
     for (int k = 0; k < nAxes; ++k)
     {
+        if (k > 0 && useList()) break;
         const Vec3& a = axes[k];
         double maxA = -std::numeric_limits<double>::max();
         double minB = std::numeric_limits<double>::max();
@@ -756,7 +972,7 @@ int findContacts
     PairSearch search(A, B, s, out, maxOut);
     Collector& col = search.col;
 
-    if (useList)
+    if (useList())
     {
         // 2-3. The listed feature pairs, in the full search's order
         search.evaluateList(list->entries, list->count);
@@ -772,7 +988,7 @@ int findContacts
             list->qA = A.q;
             list->qB = B.q;
         }
-        ListBuilder builder(search, list, listReach);
+        ListBuilder builder(search, list, listReach, s.featureSkin);
 
         // 2. Features inside the slab of the best axis (exact culling: a
         //    point farther than listReach from the other core's slab cannot
