@@ -6,6 +6,7 @@
 #include "World.H"
 #include "contact/NarrowPhase.H"
 #include "contact/NeighbourList.H"
+#include "prefetch.H"
 
 #include <algorithm>
 #include <cmath>
@@ -31,21 +32,6 @@ constexpr int minParallelBodies = 1000;
 //- The step's body and pair loops ask for the data of the body (pair)
 //  this far ahead
 constexpr int prefetchAhead = 2;
-
-//- Ask the cache for [from, from + bytes)
-inline void prefetchForRead(const void* from, std::size_t bytes)
-{
-    constexpr std::size_t cacheLine = 64;
-    const char* c = static_cast<const char*>(from);
-    for (std::size_t b = 0; b < bytes; b += cacheLine) __builtin_prefetch(c + b, 0);
-}
-
-inline void prefetchForWrite(const void* to, std::size_t bytes)
-{
-    constexpr std::size_t cacheLine = 64;
-    const char* c = static_cast<const char*>(to);
-    for (std::size_t b = 0; b < bytes; b += cacheLine) __builtin_prefetch(c + b, 1);
-}
 
 //- Half a step of the velocities under the last forces (velocity Verlet)
 inline void halfKick(Body& b, double dt)
@@ -305,8 +291,8 @@ void World::prefetchBodyFrame(int i) const
     // field the hardware does not see them coming, and the load would stall
     const auto& V = shapeOf(i).core().vertices();
     const std::size_t bytes = V.size()*sizeof(Vec3);
-    prefetchForRead(V.data(), bytes);
-    prefetchForWrite(worldVertices_.data() + vertexOffset_[i], bytes);
+    prefetchRange(V.data(), bytes);
+    prefetchRange<1>(worldVertices_.data() + vertexOffset_[i], bytes);
 }
 
 
@@ -314,11 +300,11 @@ void World::prefetchPair(const ContactPair& p) const
 {
     // What the separating-axis test reads first: the two shapes' headers
     // and world vertices (body j is anywhere in memory)
-    prefetchForRead(&shapeOf(p.i), sizeof(DilatedShape));
-    prefetchForRead(worldVertices(p.i), shapeOf(p.i).core().vertices().size()*sizeof(Vec3));
+    prefetchRange(&shapeOf(p.i), sizeof(DilatedShape));
+    prefetchRange(worldVertices(p.i), shapeOf(p.i).core().vertices().size()*sizeof(Vec3));
     if (p.isWall()) return;
-    prefetchForRead(&shapeOf(p.j), sizeof(DilatedShape));
-    prefetchForRead(worldVertices(p.j), shapeOf(p.j).core().vertices().size()*sizeof(Vec3));
+    prefetchRange(&shapeOf(p.j), sizeof(DilatedShape));
+    prefetchRange(worldVertices(p.j), shapeOf(p.j).core().vertices().size()*sizeof(Vec3));
 }
 
 

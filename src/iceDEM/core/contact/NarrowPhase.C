@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "NarrowPhase.H"
+#include "prefetch.H"
 
 #include <algorithm>
 #include <cmath>
@@ -124,25 +125,6 @@ inline bool insideFace
     return true;
 }
 
-
-//- Ask the processor to bring [p, p + bytes) into the cache (a hint: no
-//  effect on any result)
-inline void prefetchRange(const void* p, std::size_t bytes)
-{
-    const std::uintptr_t line = 64;
-    const std::uintptr_t begin = reinterpret_cast<std::uintptr_t>(p) & ~(line - 1);
-    const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(p) + bytes;
-    for (std::uintptr_t a = begin; a < end; a += line)
-    {
-        __builtin_prefetch(reinterpret_cast<const void*>(a));
-    }
-}
-
-template<class T>
-inline void prefetchVector(const std::vector<T>& v)
-{
-    prefetchRange(v.data(), v.size()*sizeof(T));
-}
 
 //- Start the cache misses of the core data of S that a list walk reads, all
 //  at once: the core's geometry block (vertices, then face planes), the
