@@ -30,23 +30,6 @@ namespace
 }
 
 
-bool NeighbourList::needsRebuild(const std::vector<Body>& bodies) const
-{
-    if (!coversBodies(bodies.size()))
-    {
-        return true;
-    }
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-    {
-        if (movedBeyondSkin(int(i), bodies[i].x))
-        {
-            return true;
-        }
-    }
-    return false;
-}
-
-
 void NeighbourList::build(const World& world)
 {
     const std::vector<Body>& bodies = world.bodies();
