@@ -33,6 +33,28 @@ constexpr int minParallelBodies = 1000;
 //  this far ahead
 constexpr int prefetchAhead = 2;
 
+//- This thread's index and its static share [begin, end) of n items (all
+//  of them outside a parallel region): every loop that splits n this way
+//  gives a thread the same items
+struct ThreadShare
+{
+    int thread = 0;
+    int begin = 0;
+    int end = 0;
+
+    explicit ThreadShare(int n)
+    {
+        #ifdef _OPENMP
+        thread = omp_get_thread_num();
+        const int nThreads = omp_get_num_threads();
+        #else
+        const int nThreads = 1;
+        #endif
+        begin = static_cast<int>(static_cast<long>(n)*thread/nThreads);
+        end = static_cast<int>(static_cast<long>(n)*(thread + 1)/nThreads);
+    }
+};
+
 //- Half a step of the velocities under the last forces (velocity Verlet)
 inline void halfKick(Body& b, double dt)
 {
@@ -575,13 +597,10 @@ void World::pairForces(double dtTangential)
     // Orphaned work-sharing: called inside a parallel region (or by one
     // thread); staged_ and scratch_ are sized by preparePairs
     {
-        #ifdef _OPENMP
-        PairScratch& S = scratch_[omp_get_thread_num()];
-        const int thread = omp_get_thread_num();
-        #else
-        PairScratch& S = scratch_[0];
-        const int thread = 0;
-        #endif
+        // The pools are written below by static chunks of pairs
+        const ThreadShare share(nPairs);
+        const int thread = share.thread;
+        PairScratch& S = scratch_[thread];
 
         FoundContact found[maxContactsPerPair];
         std::uint32_t entries[FeaturePairList::capacity];
@@ -671,11 +690,6 @@ void World::pairForces(double dtTangential)
         // before it. The pair loop's barrier made every count visible; the
         // pools' sizes are the scratch totals, so one thread sizes them
         // while the others count their chunks
-        #ifdef _OPENMP
-        const int nThreads = omp_get_num_threads();
-        #else
-        const int nThreads = 1;
-        #endif
         #pragma omp master
         {
             std::size_t nContacts = 0, nLists = 0, nEntries = 0;
@@ -691,11 +705,9 @@ void World::pairForces(double dtTangential)
             contactCount_ = static_cast<int>(nContacts);
         }
 
-        const int kBegin = static_cast<int>(static_cast<long>(nPairs)*thread/nThreads);
-        const int kEnd = static_cast<int>(static_cast<long>(nPairs)*(thread + 1)/nThreads);
         PoolCounts& mine = chunkCounts_[thread];
         mine = PoolCounts();
-        for (int k = kBegin; k < kEnd; ++k)
+        for (int k = share.begin; k < share.end; ++k)
         {
             mine.contacts += pairs[k].nContacts;
             const int l = staged_[k][2];
@@ -715,7 +727,7 @@ void World::pairForces(double dtTangential)
 
         // No barrier after this: what follows in the step (body sums) reads
         // the pairs' forces, not the pools
-        for (int k = kBegin; k < kEnd; ++k)
+        for (int k = share.begin; k < share.end; ++k)
         {
             ContactPair& p = pairs[k];
             const PairScratch& T = scratch_[staged_[k][0]];
@@ -751,15 +763,9 @@ void World::sumBodyForces(double dtKick)
     // thread takes a static chunk of bodies and does all of a body's work,
     // so the chunk needs no barrier: contact sums in the body's fixed pair
     // order, body-force models, totals and the second half kick
-    #ifdef _OPENMP
-    const int nt = omp_get_num_threads();
-    const int t = omp_get_thread_num();
-    #else
-    const int nt = 1;
-    const int t = 0;
-    #endif
-    const int begin = static_cast<int>(static_cast<long>(N)*t/nt);
-    const int end = static_cast<int>(static_cast<long>(N)*(t + 1)/nt);
+    const ThreadShare share(N);
+    const int begin = share.begin;
+    const int end = share.end;
 
     for (int b = begin; b < end; ++b)
     {
@@ -816,8 +822,6 @@ void World::bodyForces(double dtKick)
     {
         m->prepare(*this);
     }
-    modelForce_.resize(N);
-    modelTorque_.resize(N);
 
     #pragma omp parallel if(N >= minParallelBodies)
     {
@@ -847,8 +851,6 @@ void World::stepBy(double dt)
     resizeBodyFrames();
     preparePairs();
     const int N = static_cast<int>(bodies_.size());
-    modelForce_.resize(N);
-    modelTorque_.resize(N);
 
     // Without body-force models the whole step is one parallel region;
     // models prepare serially (flow sampling), between two regions
