@@ -34,6 +34,12 @@ constexpr double coincidenceTolerance = 1e-9;
 //  its ends carry.
 constexpr double parallelRoundOffSin = 1e-4;
 
+//- Edge pairs at or below this sine stay in the feature-pair lists whatever
+//  their closest points (PairSearch::linesCrossOutside): the bound on how
+//  far the list's motion turns their common normal, 4 phi/sin, grows
+//  without limit as the edges become parallel and would prune nothing
+constexpr double listPruneMinSin = 0.01;
+
 //- Inside the normal cone of vertex v, within tol: n . d_k <= tol for every
 //  edge leaving v. nBody is outward from the shape.
 inline bool inVertexCone
@@ -748,7 +754,7 @@ public:
         const Vec3 u1 = d1/L1;
         const Vec3 u2 = d2/L2;
         const double sinAngle = std::sqrt(u1.cross(u2).squaredNorm());
-        if (!(sinAngle > 0.01)) return false;
+        if (!(sinAngle > listPruneMinSin)) return false;
         const double c = u1.dot(u2);
         const Vec3 w = p2 - p1;
         const double s2 = sinAngle*sinAngle;

@@ -91,28 +91,10 @@ DilatedShape::DilatedShape
 }
 
 
-Vec3 DilatedShape::coreHalfExtents() const
-{
-    Vec3 lo = core_.vertices()[0], hi = lo;
-    for (const Vec3& v : core_.vertices())
-    {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-    }
-    return 0.5*(hi - lo);
-}
-
-
 std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes() + outer_.heapBytes()
         + edgeLength_.capacity()*sizeof(double);
-}
-
-
-std::size_t DilatedShape::sharedHeapBytes() const
-{
-    return core_.topology().heapBytes() + outer_.topology().heapBytes();
 }
 
 } // namespace iceDEM
