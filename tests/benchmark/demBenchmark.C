@@ -684,11 +684,12 @@ RunResult runOnce
         for (const DilatedShape& S : world->shapes())
         {
             shapeBytes += sizeof(DilatedShape) + S.heapBytes();
-            for (const ConvexPolyhedron* P : {&S.core(), &S.outer()})
+            PolyhedronBuffer buffer;
+            for (const PolyhedronTopology* T : {&S.core().topology(), &S.outer(buffer).topology()})
             {
-                if (topologies.insert(&P->topology()).second)
+                if (topologies.insert(T).second)
                 {
-                    topologyBytes += P->topology().heapBytes();
+                    topologyBytes += T->heapBytes();
                 }
             }
         }
@@ -698,8 +699,9 @@ RunResult runOnce
         std::printf
         (
             "# memory N=%zu rss_per_floe_B=%.0f peak_rss_MB=%.1f"
-            " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core and"
-            " outer vertices and face planes, edge lengths; + %zu shared"
+            " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core"
+            " vertices and face planes, edge lengths, stored outer polyhedra;"
+            " + %zu shared"
             " topologies %.0f B), world vertices,"
             " rotation and omega %.0f B; contact state %.0f B per floe"
             " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"

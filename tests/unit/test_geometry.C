@@ -257,7 +257,74 @@ TEST(geometry, edgeDirectionsExact)
             (P.vertices()[P.edges()[e][1]] - P.vertices()[P.edges()[e][0]]).normalized();
         EXPECT_EQ(S.edgeDirection(e), d);
     }
-    // The outer polyhedron has its own (canonical) numbering and topology
-    EXPECT_EQ(S.outer().vertices().size(), P.vertices().size());
-    EXPECT_EQ(S.heapBytes(), P.heapBytes() + S.outer().heapBytes() + P.edges().size()*sizeof(double));
+    // A prism's outer polyhedron is derived, not stored
+    EXPECT_FALSE(S.outerStored());
+    EXPECT_EQ(S.heapBytes(), P.heapBytes() + P.edges().size()*sizeof(double));
+}
+
+// The derived outer polyhedron of a prism (three faces at every vertex) is
+// the core offset by r as offset() builds it, a half-space intersection
+// with its own numbering: the same volume, the same vertices as a set, every
+// face plane the core's moved out by r. A pyramid's apex has four faces:
+// that outer is stored, and is offset()'s.
+TEST(geometry, outerPolyhedronDerivedOrStored)
+{
+    const double r = 0.1;
+    const std::vector<Vec2> polygon =
+        {{0.1, 0.2}, {2.3, -0.7}, {3.9, 1.1}, {3.1, 3.3}, {0.9, 3.7}, {-0.6, 2.05}, {-0.4, 0.9}};
+    const ConvexPolyhedron prism = ConvexPolyhedron::prism(polygon, -0.45, 0.9);
+    const ConvexPolyhedron pyramid = ConvexPolyhedron::hull
+    (
+        {{-1, -1, 0}, {1.2, -1, 0}, {1, 1.1, 0}, {-1, 1, 0}, {0.1, 0.05, 1.4}}
+    );
+
+    for (const ConvexPolyhedron* core : {&prism, &pyramid})
+    {
+        const DilatedShape S(*core, r);
+        EXPECT_EQ(S.outerStored(), core == &pyramid);
+
+        // offset() of the core in the principal frame (the shape's frame)
+        const ConvexPolyhedron reference = S.core().offset(r);
+        PolyhedronBuffer buffer;
+        const PolyhedronView outer = S.outer(buffer);
+
+        EXPECT_NEAR(ConvexPolyhedron::hull
+        (
+            std::vector<Vec3>(outer.vertices().begin(), outer.vertices().end())
+        ).volume(), reference.volume(), 1e-12*reference.volume());
+        EXPECT_NEAR(reference.volume(), S.facetedVolume(), 1e-12*reference.volume());
+
+        ASSERT_EQ(outer.vertices().size(), reference.vertices().size());
+        for (const Vec3& v : outer.vertices())
+        {
+            double nearest = 1e300;
+            for (const Vec3& w : reference.vertices())
+            {
+                nearest = std::min(nearest, (v - w).norm());
+            }
+            EXPECT_LT(nearest, 1e-12);
+        }
+
+        // Each face: the plane of its vertices, and the core's face with
+        // that normal moved out by r
+        ASSERT_EQ(outer.faces().size(), S.core().faces().size());
+        for (const auto face : outer.faces())
+        {
+            for (int k = 0; k < face.count; ++k)
+            {
+                const Vec3& v = outer.vertices()[outer.faceVertices()[face.begin + k]];
+                EXPECT_NEAR(face.normal.dot(v), face.offset, 1e-12);
+            }
+            bool found = false;
+            for (const auto coreFace : S.core().faces())
+            {
+                if ((coreFace.normal - face.normal).norm() < 1e-12)
+                {
+                    found = true;
+                    EXPECT_NEAR(face.offset, coreFace.offset + r, 1e-12);
+                }
+            }
+            EXPECT_TRUE(found);
+        }
+    }
 }

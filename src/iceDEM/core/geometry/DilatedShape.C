@@ -13,6 +13,67 @@
 namespace iceDEM
 {
 
+namespace
+{
+
+// Smallest |n_a . (n_b x n_c)| of the three face normals at a core vertex
+// for which the outer vertex is derived (DilatedShape::outer): the meeting
+// point of the moved planes divides by it. Below it (three nearly dependent
+// normals) the outer is built by offset() and stored instead.
+constexpr double minVertexNormalsDeterminant = 1e-6;
+
+// The three faces that meet at vertex v of P; false where more meet
+bool threeFacesAt(const ConvexPolyhedron& P, int v, int faces[3])
+{
+    const int begin = P.vertexEdgeBegin(v);
+    if (P.vertexEdgeEnd(v) - begin != 3)
+    {
+        return false;
+    }
+    const auto& first = P.edgeFaces()[P.vertexEdges()[begin]];
+    const auto& second = P.edgeFaces()[P.vertexEdges()[begin + 1]];
+    faces[0] = first[0];
+    faces[1] = first[1];
+    faces[2] =
+        (second[0] == first[0] || second[0] == first[1]) ? second[1] : second[0];
+    return true;
+}
+
+// The displacement w of a vertex whose three planes (unit normals a, b, c)
+// each move out by 1: a.w = b.w = c.w = 1, so w = (b x c + c x a + a x b)
+// / det with det = a . (b x c) (returned in det)
+Vec3 unitOffsetDisplacement(const Vec3& a, const Vec3& b, const Vec3& c, double& det)
+{
+    const Vec3 bc = b.cross(c);
+    det = a.dot(bc);
+    return (bc + c.cross(a) + a.cross(b))/det;
+}
+
+// Whether the outer polyhedron of core P can be derived from it (see
+// DilatedShape::outer)
+bool outerDerivable(const ConvexPolyhedron& P)
+{
+    const auto F = P.faces();
+    for (int v = 0; v < static_cast<int>(P.vertices().size()); ++v)
+    {
+        int f[3];
+        if (!threeFacesAt(P, v, f))
+        {
+            return false;
+        }
+        double det;
+        unitOffsetDisplacement(F[f[0]].normal, F[f[1]].normal, F[f[2]].normal, det);
+        if (!(std::abs(det) >= minVertexNormalsDeterminant))
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+} // End anonymous namespace
+
+
 MassModel massModelFromName(const std::string& name)
 {
     if (name == "faceted") return MassModel::faceted;
@@ -69,7 +130,13 @@ DilatedShape::DilatedShape
 
     const Mat3 Rt = R.transpose();
     core_ = coreInput.transformed(Rt, -Rt*centroidInput_);
-    outer_ = outerInput.transformed(Rt, -Rt*centroidInput_);
+    if (!outerDerivable(core_))
+    {
+        storedOuter_ = std::make_shared<const ConvexPolyhedron>
+        (
+            outerInput.transformed(Rt, -Rt*centroidInput_)
+        );
+    }
 
     // Bounding sphere about the centroid
     double rMax = 0;
@@ -91,9 +158,40 @@ DilatedShape::DilatedShape
 }
 
 
+PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
+{
+    if (storedOuter_)
+    {
+        return storedOuter_->view();
+    }
+
+    const auto V = core_.vertices();
+    const auto F = core_.faces();
+    buffer.vertices.resize(V.size());
+    buffer.planes.resize(F.size());
+    for (std::size_t f = 0; f < F.size(); ++f)
+    {
+        const ConvexPolyhedron::Face face = F[f];
+        buffer.planes[f] = {face.normal, face.offset + radius_};
+    }
+    for (int v = 0; v < static_cast<int>(V.size()); ++v)
+    {
+        int f[3];
+        threeFacesAt(core_, v, f);
+        double det;
+        buffer.vertices[v] = V[v] + radius_*unitOffsetDisplacement
+        (
+            F[f[0]].normal, F[f[1]].normal, F[f[2]].normal, det
+        );
+    }
+    return PolyhedronView(core_.topology(), buffer.vertices.data(), buffer.planes.data());
+}
+
+
 std::size_t DilatedShape::heapBytes() const
 {
-    return core_.heapBytes() + outer_.heapBytes()
+    return core_.heapBytes()
+        + (storedOuter_ ? sizeof(ConvexPolyhedron) + storedOuter_->heapBytes() : 0)
         + edgeLength_.capacity()*sizeof(double);
 }
 

@@ -59,6 +59,10 @@ void Buoyancy::addForces
         return;
     }
 
+    // This thread's room for derived outer polyhedra (no allocation once
+    // it has grown to the largest floe)
+    static thread_local PolyhedronBuffer outerBuffer;
+
     const std::vector<Body>& bodies = world.bodies();
     for (int i = begin; i < end; ++i)
     {
@@ -67,7 +71,7 @@ void Buoyancy::addForces
         if (!b.isFree()) continue;
         const SubmergedVolume sub = submergedVolume
         (
-            world.shapeOf(i).outer(),
+            world.shapeOf(i).outer(outerBuffer),
             b.rotation(),
             b.x,
             water_.level

@@ -88,7 +88,10 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     M.setZero();
 
     const Body& b = world.bodies()[i];
-    const ConvexPolyhedron& P = world.shapeOf(i).outer();
+    // This thread's room for derived outer polyhedra (no allocation once
+    // it has grown to the largest floe)
+    static thread_local PolyhedronBuffer outerBuffer;
+    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
     const Mat3 R = b.rotation();
     const Vec3 omega = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
 

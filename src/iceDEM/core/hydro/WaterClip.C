@@ -129,7 +129,7 @@ void addClippedTetrahedron(const Vec3 p[4], const double s[4], VolumeSum& sum)
 
 SubmergedVolume submergedVolume
 (
-    const ConvexPolyhedron& P,
+    const PolyhedronView& P,
     const Mat3& R,
     const Vec3& x,
     double level
@@ -201,7 +201,7 @@ SubmergedVolume submergedVolume
 
 bool submergedFace
 (
-    const ConvexPolyhedron& P,
+    const PolyhedronView& P,
     int f,
     const Mat3& R,
     const Vec3& x,
@@ -209,7 +209,7 @@ bool submergedFace
     SubmergedFace& out
 )
 {
-    const ConvexPolyhedron::Face& face = P.faces()[f];
+    const PolyhedronView::Face face = P.faces()[f];
     const int n = face.count;
     if (n + 1 > SubmergedFace::maxVertices)
     {

@@ -247,7 +247,8 @@ void Foam::resolvedFlowVelocity::samplePoints
     faces.clear();
 
     const ::iceDEM::Body& b = world.bodies()[i];
-    const ::iceDEM::ConvexPolyhedron& P = world.shapeOf(i).outer();
+    static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
+    const ::iceDEM::PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
     const ::iceDEM::Mat3 R = b.rotation();
     const double level = drag.water().level;
     const ::iceDEM::DragSettings& s = drag.settings();
@@ -581,7 +582,8 @@ void Foam::resolvedFlowVelocity::prepare
 
             // One fit per wet face (its points are contiguous)
             std::vector<linearFit>& ff = faceFits_[i];
-            ff.assign(world.shapeOf(i).outer().faces().size(), linearFit());
+            static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
+            ff.assign(world.shapeOf(i).outer(outerBuffer).faces().size(), linearFit());
             const std::vector<int>& face = pointFaces_[i];
             for (size_t k = 0; k < n; )
             {
@@ -639,8 +641,9 @@ void Foam::resolvedFlowVelocity::velocity
             // nearest to the first point. A face that was dry at the
             // sampling takes the whole floe's fit.
             const ::iceDEM::Body& b = world_->bodies()[body];
-            const ::iceDEM::ConvexPolyhedron& P =
-                world_->shapeOf(body).outer();
+            static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
+            const ::iceDEM::PolyhedronView P =
+                world_->shapeOf(body).outer(outerBuffer);
             const ::iceDEM::Vec3 q =
                 b.rotation().transpose()*(points[0] - b.x);
             int best = -1;

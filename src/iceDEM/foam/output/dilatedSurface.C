@@ -44,7 +44,7 @@ Vec3 arc(const Vec3& a, const Vec3& b, int i, int s)
 }
 
 
-void polyhedronSurface(SurfaceMesh& m, const ConvexPolyhedron& P)
+void polyhedronSurface(SurfaceMesh& m, const PolyhedronView& P)
 {
     const int base = int(m.points.size());
     m.points.insert(m.points.end(), P.vertices().begin(), P.vertices().end());
@@ -83,7 +83,8 @@ iceDEM::SurfaceMesh iceDEM::dilatedSurface
 
     if (kind == SurfaceKind::outer)
     {
-        polyhedronSurface(m, shape.outer());
+        PolyhedronBuffer buffer;
+        polyhedronSurface(m, shape.outer(buffer));
         return m;
     }
     if (kind == SurfaceKind::core)
