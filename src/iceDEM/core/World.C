@@ -256,6 +256,21 @@ void World::addWall(const Wall& w)
 void World::addForceModel(const std::shared_ptr<BodyForceModel>& m)
 {
     forceModels_.push_back(m);
+    if (initialised_)
+    {
+        sizeModelSums();
+    }
+}
+
+
+void World::sizeModelSums()
+{
+    // Only a world with models needs them (memory per floe, issue 7)
+    const std::size_t n = forceModels_.empty() ? 0 : bodies_.size();
+    modelForce_.assign(n, Vec3::Zero());
+    modelTorque_.assign(n, Vec3::Zero());
+    modelForce_.shrink_to_fit();
+    modelTorque_.shrink_to_fit();
 }
 
 
@@ -419,8 +434,7 @@ void World::initialise(bool restart)
         }
     }
 
-    modelForce_.assign(bodies_.size(), Vec3::Zero());
-    modelTorque_.assign(bodies_.size(), Vec3::Zero());
+    sizeModelSums();
 
     vertexOffset_.clear();
     updateWorldVertices();
@@ -788,20 +802,32 @@ void World::sumBodyForces(double dtKick)
         }
         body.contactForce = F;
         body.contactTorque = T;
-        modelForce_[b].setZero();
-        modelTorque_[b].setZero();
     }
 
-    for (const auto& m : forceModels_)
+    const bool models = !forceModels_.empty();
+    if (models)
     {
-        m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+        for (int b = begin; b < end; ++b)
+        {
+            modelForce_[b].setZero();
+            modelTorque_[b].setZero();
+        }
+        for (const auto& m : forceModels_)
+        {
+            m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+        }
     }
 
     for (int b = begin; b < end; ++b)
     {
         Body& body = bodies_[b];
-        body.force = body.contactForce + modelForce_[b];
-        body.torque = body.contactTorque + modelTorque_[b];
+        body.force = body.contactForce;
+        body.torque = body.contactTorque;
+        if (models)
+        {
+            body.force += modelForce_[b];
+            body.torque += modelTorque_[b];
+        }
         if (body.isFree())
         {
             body.force += body.mass*settings_.gravity;
