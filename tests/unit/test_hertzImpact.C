@@ -45,7 +45,7 @@ Impact runImpact(World& w, int a, int b, const Vec3& axis, double tEnd)
             tStop = w.time() + 0.5*dt;
             r.maxContacts = std::max(r.maxContacts, n);
             for (const auto& c : w.contacts()) r.types.insert(c.type);
-            r.peakForce = std::max(r.peakForce, w.bodies()[b].contactForce.norm());
+            r.peakForce = std::max(r.peakForce, w.contactLoad(b).force.norm());
         }
         else if (started)
         {

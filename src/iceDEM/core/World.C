@@ -770,7 +770,6 @@ void World::pairForces(double dtTangential)
 
 void World::sumBodyForces(double dtKick)
 {
-    const auto& pairs = nlist_->pairs();
     const int N = static_cast<int>(bodies_.size());
 
     // Orphaned: called inside a parallel region (or by one thread). Each
@@ -783,25 +782,9 @@ void World::sumBodyForces(double dtKick)
 
     for (int b = begin; b < end; ++b)
     {
-        Body& body = bodies_[b];
-        Vec3 F = Vec3::Zero();
-        Vec3 T = Vec3::Zero();
-        for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
-        {
-            const ContactPair& p = pairs[nlist_->bodyPair(k)];
-            if (p.i == b)
-            {
-                F -= p.forceOnJ;
-                T += p.torqueOnI;
-            }
-            else
-            {
-                F += p.forceOnJ;
-                T += p.torqueOnJ;
-            }
-        }
-        body.contactForce = F;
-        body.contactTorque = T;
+        const ContactLoad c = contactLoad(b);
+        bodies_[b].force = c.force;
+        bodies_[b].torque = c.torque;
     }
 
     const bool models = !forceModels_.empty();
@@ -821,8 +804,6 @@ void World::sumBodyForces(double dtKick)
     for (int b = begin; b < end; ++b)
     {
         Body& body = bodies_[b];
-        body.force = body.contactForce;
-        body.torque = body.contactTorque;
         if (models)
         {
             body.force += modelForce_[b];
@@ -979,6 +960,29 @@ void World::setPrescribedState
     b.q = q.normalized();
     b.v = v;
     b.setOmega(omega);
+}
+
+
+ContactLoad World::contactLoad(int b) const
+{
+    ContactLoad c;
+    if (!nlist_) return c;
+    const auto& pairs = nlist_->pairs();
+    for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+    {
+        const ContactPair& p = pairs[nlist_->bodyPair(k)];
+        if (p.i == b)
+        {
+            c.force -= p.forceOnJ;
+            c.torque += p.torqueOnI;
+        }
+        else
+        {
+            c.force += p.forceOnJ;
+            c.torque += p.torqueOnJ;
+        }
+    }
+    return c;
 }
 
 

@@ -779,11 +779,12 @@ void Foam::iceDEMCoupling::solve()
             for (label p = 0; p < nPieces_; ++p)
             {
                 const ::iceDEM::Body& b = w.bodies()[firstPiece_ + p];
-                if (b.contactForce.squaredNorm() > 0 || b.contactTorque.squaredNorm() > 0)
+                const ::iceDEM::ContactLoad c = w.contactLoad(firstPiece_ + p);
+                if (c.force.squaredNorm() > 0 || c.torque.squaredNorm() > 0)
                 {
                     touching = true;
-                    F += b.contactForce;
-                    M += b.contactTorque + (b.x - CoR).cross(b.contactForce);
+                    F += c.force;
+                    M += c.torque + (b.x - CoR).cross(c.force);
                 }
             }
             impulseF += h*F;
