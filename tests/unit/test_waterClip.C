@@ -8,10 +8,11 @@ Description
     cube standing on a corner, an upright prism and a prism lying on its
     side at several water levels; consistency of the clipped faces with the
     clipped volume (divergence theorem) for arbitrary poses; the drag sample
-    points.
+    points; a floe's derived outer polyhedron clips as offset()'s does.
 \*---------------------------------------------------------------------------*/
 
 #include "hydro/WaterClip.H"
+#include "geometry/DilatedShape.H"
 
 #include <gtest/gtest.h>
 
@@ -276,6 +277,58 @@ TEST(WaterClip, belowPlusAboveIsWhole)
         const Vec3 whole =
             (below.volume*below.centroid + above.volume*above.centroid)/V;
         EXPECT_NEAR((whole - (R*c + x)).norm(), 0, tol*4);
+    }
+}
+
+
+// Buoyancy and drag clip a floe's outer polyhedron, derived from the core
+// for a prism (DilatedShape::outer): at arbitrary poses it gives the
+// submerged volume, centroid and wet face areas of the half-space
+// intersection offset() builds (another vertex numbering, the same solid)
+TEST(WaterClip, derivedOuterClipsAsOffset)
+{
+    const double r = 0.15;
+    const DilatedShape S
+    (
+        ConvexPolyhedron::prism({{0, 0}, {3, 0.2}, {3.5, 2}, {1.2, 3.1}, {-0.3, 1.4}}, -0.4, 0.9),
+        r
+    );
+    ASSERT_FALSE(S.outerStored());
+    PolyhedronBuffer buffer;
+    const PolyhedronView outer = S.outer(buffer);
+    const ConvexPolyhedron reference = S.core().offset(r);
+    const double L = 4;
+
+    std::mt19937 gen(2026);
+    std::uniform_real_distribution<double> U(-1, 1);
+    for (int trial = 0; trial < 50; ++trial)
+    {
+        const Mat3 R = randomRotation(gen);
+        const Vec3 x(5*U(gen), 5*U(gen), 0.5*U(gen));
+        const double level = 0.5*U(gen);
+
+        const SubmergedVolume a = submergedVolume(outer, R, x, level);
+        const SubmergedVolume b = submergedVolume(reference, R, x, level);
+        EXPECT_NEAR(a.volume, b.volume, tol*reference.volume());
+        EXPECT_NEAR((a.centroid - b.centroid).norm(), 0, tol*L);
+
+        // Wet area of the faces with the same outward normal
+        for (int f = 0; f < int(outer.faces().size()); ++f)
+        {
+            SubmergedFace fa;
+            const double areaA = submergedFace(outer, f, R, x, level, fa) ? fa.area : 0;
+            double areaB = -1;
+            for (int g = 0; g < int(reference.faces().size()); ++g)
+            {
+                if ((reference.faces()[g].normal - outer.faces()[f].normal).norm() < 1e-12)
+                {
+                    SubmergedFace fb;
+                    areaB = submergedFace(reference, g, R, x, level, fb) ? fb.area : 0;
+                }
+            }
+            ASSERT_GE(areaB, 0) << "no face of offset() with the normal of face " << f;
+            EXPECT_NEAR(areaA, areaB, tol*L*L);
+        }
     }
 }
 
