@@ -154,7 +154,6 @@ long residentKB()
 }
 
 
-//- FNV-1a over the bytes of the bodies' state (x, q, v, L)
 //- FNV-1a over the bytes of n doubles
 void mixHash(std::uint64_t& h, const double* p, int n)
 {
@@ -168,6 +167,7 @@ void mixHash(std::uint64_t& h, const double* p, int n)
 
 constexpr std::uint64_t hashSeed = 1469598103934665603ULL;
 
+//- FNV-1a over the bytes of the bodies' state (x, q, v, L)
 std::uint64_t stateHash(const World& w)
 {
     std::uint64_t h = hashSeed;
@@ -675,9 +675,9 @@ RunResult runOnce
         // about 16 B per heap block, excluded)
         const double skin = o.skin > 0 ? o.skin : kRadius;
         const long pairs = estimateCandidatePairs(*world, skin);
-        // Per shape: the object, its own heap (the polyhedra's vertices and
-        // face planes, edge lengths); the topologies are shared between
-        // shapes: each distinct one counted once
+        // Per shape: the object, its own heap (the core's vertices and face
+        // planes, edge lengths, a stored outer polyhedron); the topologies
+        // are shared between shapes: each distinct one counted once
         double shapeBytes = 0;
         std::set<const PolyhedronTopology*> topologies;
         double topologyBytes = 0;

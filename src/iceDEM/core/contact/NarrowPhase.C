@@ -144,11 +144,7 @@ inline void prefetchShape(const DilatedShape& S)
     const ConvexPolyhedron& P = S.core();
     const PolyhedronTopology& T = P.topology();
     if (T.nFaces() == 0 || T.nEdges() == 0) return;
-    prefetchRange
-    (
-        P.vertices().data(),
-        T.nVertices()*sizeof(Vec3) + T.nFaces()*sizeof(ConvexPolyhedron::Plane)
-    );
+    prefetchRange(P.vertices().data(), P.geometryBytes());
     prefetchVector(S.edgeLengths());
     prefetchVector(T.faces());
     prefetchVector(T.faceVertices());

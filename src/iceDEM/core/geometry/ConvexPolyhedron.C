@@ -124,7 +124,7 @@ void ConvexPolyhedron::allocateGeometry()
 
     const std::size_t nV = topology_->nVertices();
     const std::size_t nF = topology_->nFaces();
-    geometry_.reset(new std::byte[nV*sizeof(Vec3) + nF*sizeof(Plane)]);
+    geometry_.reset(new std::byte[geometryBytes()]);
     // Start the objects' lifetimes in the raw block, one by one (an array
     // placement-new may add a cookie); values set by the caller
     std::byte* p = geometry_.get();
@@ -402,7 +402,7 @@ ConvexPolyhedron ConvexPolyhedron::transformed(const Mat3& R, const Vec3& t) con
 std::size_t ConvexPolyhedron::heapBytes() const
 {
     if (!geometry_) return 0;
-    return topology_->nVertices()*sizeof(Vec3) + topology_->nFaces()*sizeof(Plane);
+    return geometryBytes();
 }
 
 } // namespace iceDEM

@@ -582,8 +582,7 @@ void Foam::resolvedFlowVelocity::prepare
 
             // One fit per wet face (its points are contiguous)
             std::vector<linearFit>& ff = faceFits_[i];
-            static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
-            ff.assign(world.shapeOf(i).outer(outerBuffer).faces().size(), linearFit());
+            ff.assign(world.shapeOf(i).outerFaceCount(), linearFit());
             const std::vector<int>& face = pointFaces_[i];
             for (size_t k = 0; k < n; )
             {
