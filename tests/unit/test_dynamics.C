@@ -284,52 +284,6 @@ TEST(rotation, torqueFreeAsymmetricBodyFollowsEulersEquations)
 namespace
 {
 
-//- A field of prisms in a walled box, drifting and colliding
-std::unique_ptr<World> makeField(int n, unsigned seed)
-{
-    WorldSettings s;
-    s.timeStep = 1e-3;
-    s.gravity = Vec3::Zero();
-    auto w = std::make_unique<World>(s);
-    const int mat = w->addMaterial(ice(1e9));
-    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
-    std::mt19937_64 rng(seed);
-    auto uni = [&](double a, double b)
-    {
-        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
-    };
-    const int side = int(std::ceil(std::sqrt(double(n))));
-    const double pitch = 3.0;
-    for (int k = 0; k < n; ++k)
-    {
-        std::vector<Vec2> poly;
-        const int m = 5 + int(rng() % 3);
-        const double phase = uni(0, 2*M_PI);
-        for (int j = 0; j < m; ++j)
-        {
-            const double a = phase + 2*M_PI*j/m;
-            const double rad = uni(1.0, 1.3);
-            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
-        }
-        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1));
-        const Vec3 x((k % side)*pitch, (k/side)*pitch, 0);
-        w->addBody(shape, mat, x, Quat::Identity(), Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5)));
-    }
-    const double L = side*pitch;
-    const Vec3 dirs[4] = {Vec3::UnitX(), -Vec3::UnitX(), Vec3::UnitY(), -Vec3::UnitY()};
-    const Vec3 pts[4] = {Vec3(-pitch, 0, 0), Vec3(L, 0, 0), Vec3(0, -pitch, 0), Vec3(0, L, 0)};
-    for (int k = 0; k < 4; ++k)
-    {
-        Wall wall;
-        wall.name = "side" + std::to_string(k);
-        wall.point = pts[k];
-        wall.normal = dirs[k];
-        wall.material = mat;
-        w->addWall(wall);
-    }
-    return w;
-}
-
 void expectSameState(const World& a, const World& b)
 {
     ASSERT_EQ(a.bodies().size(), b.bodies().size());

@@ -55,6 +55,17 @@ struct ThreadShare
     }
 };
 
+//- A pair without contacts: no force, torque, energy or overlap
+inline void clearPairForces(ContactPair& p)
+{
+    p.nContacts = 0;
+    p.forceOnJ.setZero();
+    p.torqueOnI.setZero();
+    p.torqueOnJ.setZero();
+    p.elasticEnergy = 0;
+    p.deepest = 0;
+}
+
 //- Half a step of the velocities under the last forces (velocity Verlet)
 inline void halfKick(Body& b, double dt)
 {
@@ -535,7 +546,8 @@ int World::findPairContacts
     const ContactPair& p,
     Vec3& axis,
     FoundContact* found,
-    FeaturePairList* features
+    FeaturePairList* features,
+    double* separation
 ) const
 {
     const Body& bi = bodies_[p.i];
@@ -543,14 +555,14 @@ int World::findPairContacts
     if (p.isWall())
     {
         const Wall& w = walls_[p.wall()];
-        return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair);
+        return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair, separation);
     }
     const Body& bj = bodies_[p.j];
     const BodyView B{&shapeOf(p.j), worldVertices(p.j), rotations_[p.j], bj.x, bj.q};
     NarrowPhaseSettings nps;
     nps.parallelEdgeSin = settings_.parallelEdgeSin;
     nps.featureSkin = featureSkin_;
-    return findContacts(A, B, nps, axis, found, maxContactsPerPair, features);
+    return findContacts(A, B, nps, axis, found, maxContactsPerPair, features, separation);
 }
 
 
@@ -623,11 +635,45 @@ void World::pairForces(double dtTangential)
         const StoredFeatureList* oldLists = nl.featureLists().data();
         const std::uint32_t* oldEntries = nl.listEntries().data();
 
+        // A pair's new feature-pair list into this thread's scratch
+        auto stageList = [&S]
+        (
+            std::array<int, 3>& st,
+            StoredFeatureList L,
+            const std::uint32_t* from
+        )
+        {
+            st[2] = static_cast<int>(S.lists.size());
+            L.firstEntry = static_cast<int>(S.entries.size());
+            S.lists.push_back(L);
+            S.entries.insert(S.entries.end(), from, from + L.count);
+        };
+
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
         {
             ContactPair& p = pairs[k];
-            if (k + prefetchAhead < nPairs) prefetchPair(pairs[k + prefetchAhead]);
+            if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
+            {
+                prefetchPair(pairs[k + prefetchAhead]);
+            }
+            std::array<int, 3>& st = staged_[k];
+            st = {thread, static_cast<int>(S.contacts.size()), -1};
+
+            // A pair whose separation certificate still holds cannot touch:
+            // no narrow phase (nor reads of its bodies' shapes and world
+            // vertices); its feature-pair list is kept as the narrow phase
+            // would keep it, after a separating axis
+            if (nl.separated(p))
+            {
+                if (p.nContacts > 0) clearPairForces(p);
+                if (p.featureList >= 0)
+                {
+                    const StoredFeatureList& L = oldLists[p.featureList];
+                    stageList(st, L, oldEntries + L.firstEntry);
+                }
+                continue;
+            }
 
             FeaturePairList list;
             list.entries = entries;
@@ -641,20 +687,16 @@ void World::pairForces(double dtTangential)
                 list.qA = L.qA;
                 list.qB = L.qB;
             }
-            const int nFound =
-                findPairContacts(p, p.axis, found, p.isWall() ? nullptr : &list);
+            double separation = std::numeric_limits<double>::lowest();
+            const int nFound = findPairContacts
+            (
+                p, p.axis, found, p.isWall() ? nullptr : &list, &separation
+            );
+            if (nFound == 0) nl.certify(p, separation);
 
             const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
-            std::array<int, 3>& st = staged_[k];
-            st = {thread, static_cast<int>(S.contacts.size()), -1};
-
-            p.nContacts = 0;
-            p.forceOnJ.setZero();
-            p.torqueOnI.setZero();
-            p.torqueOnJ.setZero();
-            p.elasticEnergy = 0;
-            p.deepest = 0;
+            clearPairForces(p);
 
             for (int c = 0; c < nFound; ++c)
             {
@@ -685,16 +727,13 @@ void World::pairForces(double dtTangential)
 
             if (list.count >= 0)
             {
-                st[2] = static_cast<int>(S.lists.size());
                 StoredFeatureList L;
                 L.xA = list.xA;
                 L.xB = list.xB;
                 L.qA = list.qA;
                 L.qB = list.qB;
                 L.count = list.count;
-                L.firstEntry = static_cast<int>(S.entries.size());
-                S.lists.push_back(L);
-                S.entries.insert(S.entries.end(), entries, entries + list.count);
+                stageList(st, L, entries);
             }
         }
 
@@ -884,7 +923,7 @@ void World::stepBy(double dt)
             }
             if (i + prefetchAhead < N) prefetchBodyFrame(i + prefetchAhead);
             updateBodyFrame(i);
-            if (listCoversBodies && !rebuild && nlist_->movedBeyondSkin(i, b.x))
+            if (listCoversBodies && nlist_->track(i, b.x, b.q))
             {
                 rebuild = true;
             }
@@ -1014,6 +1053,13 @@ std::size_t World::contactStateBytes() const
 long World::neighbourListBuilds() const
 {
     return nlist_ ? nlist_->builds() : 0;
+}
+
+
+const NeighbourList& World::neighbourList() const
+{
+    if (!nlist_) throw Error("neighbourList() before initialise");
+    return *nlist_;
 }
 
 

@@ -260,20 +260,6 @@ inline std::uint32_t listEntry(PairKind k, int a, int b)
 //  the windows' tolerances, 1e-12 R, and the rounding of the distances)
 constexpr double listTolerance = 1e-6;
 
-//- Upper bound on the displacement of any point within R of the centroid
-//  from pose (x0, q0) to (x, q): |(R(q) - R(q0)) s| = 2 sin(theta/2) |s_perp|
-//  and |vec(q0^* q)| = sin(theta/2)
-inline double motionBound
-(
-    const Vec3& x0,
-    const Quat& q0,
-    const Vec3& x,
-    const Quat& q,
-    double R
-)
-{
-    return (x - x0).norm() + 2*(q0.conjugate()*q).vec().norm()*R;
-}
 
 //- Squared distance from p to the segment e0 + t de, t in [0, 1]
 inline double pointSegmentDistance2(const Vec3& p, const Vec3& e0, const Vec3& de)
@@ -863,7 +849,8 @@ int findContacts
     Vec3& axis,
     FoundContact* out,
     int maxOut,
-    FeaturePairList* list
+    FeaturePairList* list,
+    double* separation
 )
 {
     const DilatedShape& SA = *A.shape;
@@ -942,6 +929,11 @@ int findContacts
         if (gap >= rs)
         {
             axis = a;
+            if (separation)
+            {
+                *separation =
+                    gap - rs - listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+            }
             return 0;
         }
         if (gap > bestGap)
@@ -1112,17 +1104,20 @@ int findWallContacts
     const Vec3& point,
     const Vec3& normal,
     FoundContact* out,
-    int maxOut
+    int maxOut,
+    double* separation
 )
 {
     const DilatedShape& S = *A.shape;
     const double r = S.radius();
     const int nV = static_cast<int>(S.core().vertices().size());
     int n = 0;
+    double minDist = std::numeric_limits<double>::max();
     for (int v = 0; v < nV; ++v)
     {
         const Vec3& p = A.vertices[v];
         const double dist = normal.dot(p - point);
+        minDist = std::min(minDist, dist);
         if (dist >= r) continue;
         if (n >= maxOut)
         {
@@ -1138,6 +1133,10 @@ int findWallContacts
         c.g.sinAngle = 1;
         c.featureA = featureKey(kVertex, v);
         c.featureB = featureKey(kPlane, 0);
+    }
+    if (separation && n == 0)
+    {
+        *separation = minDist - r - listTolerance*S.boundingRadius();
     }
     return n;
 }

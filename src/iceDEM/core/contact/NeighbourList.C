@@ -197,7 +197,11 @@ void NeighbourList::build(const World& world)
     );
     candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
 
-    // New pairs, carrying over the contacts of pairs that persist
+    // New pairs, carrying over the contacts of pairs that persist. Their
+    // separation certificates move to the new reference poses: less the
+    // motion since the last build (track() ran for every body this step
+    // when the list covered the bodies; otherwise they start anew)
+    const bool carryCertificates = coversBodies(N);
     std::vector<ContactPair> next(candidates_.size());
     std::size_t old = 0;
     for (std::size_t k = 0; k < candidates_.size(); ++k)
@@ -213,6 +217,9 @@ void NeighbourList::build(const World& world)
         if (old < pairs_.size() && pairKey(pairs_[old].i, pairs_[old].j, N) == key)
         {
             p = pairs_[old];
+            p.clearance = carryCertificates
+                ? p.clearance - motion(p)
+                : std::numeric_limits<double>::lowest();
         }
     }
     pairs_.swap(next);
@@ -236,11 +243,12 @@ void NeighbourList::build(const World& world)
         if (!pairs_[k].isWall()) bodyPairs_[fill[pairs_[k].j]++] = k;
     }
 
-    positionAtBuild_.resize(N);
+    poseAtBuild_.resize(N);
     for (int i = 0; i < N; ++i)
     {
-        positionAtBuild_[i] = bodies[i].x;
+        poseAtBuild_[i] = BuildPose{bodies[i].q, bodies[i].x, R[i]};
     }
+    motion_.assign(N, 0);
 }
 
 
