@@ -33,14 +33,25 @@ double segmentSegmentDistance2(const Vec3& p1, const Vec3& q1, const Vec3& p2, c
     return (p1 + s*d1 - p2 - t*d2).squaredNorm();
 }
 
+//- Core vertices of body i of w at its present pose, world frame
+std::vector<Vec3> worldCore(const World& w, int i)
+{
+    const Body& b = w.bodies()[i];
+    const Mat3 R = b.rotation();
+    std::vector<Vec3> v;
+    for (const Vec3& s : w.shapeOf(i).core().vertices()) v.push_back(R*s + b.x);
+    return v;
+}
+
 //- Distance between the cores of bodies i and j of w (separated cores), by
 //  brute force: every edge pair and every vertex over a face's interior
 double coreDistance(const World& w, int i, int j)
 {
     const ConvexPolyhedron& PA = w.shapeOf(i).core();
     const ConvexPolyhedron& PB = w.shapeOf(j).core();
-    const Vec3* vA = w.worldVertices(i);
-    const Vec3* vB = w.worldVertices(j);
+    const std::vector<Vec3> worldA = worldCore(w, i), worldB = worldCore(w, j);
+    const Vec3* vA = worldA.data();
+    const Vec3* vB = worldB.data();
     double d2 = std::numeric_limits<double>::infinity();
     for (const auto& ea : PA.edges())
     {
@@ -76,10 +87,11 @@ double coreDistance(const World& w, int i, int j)
     return d;
 }
 
-BodyView viewOf(const World& w, int i)
+//- Body i of w as the narrow phase sees it; vertices: its world core
+BodyView viewOf(const World& w, int i, const std::vector<Vec3>& vertices)
 {
     const Body& b = w.bodies()[i];
-    return BodyView{&w.shapeOf(i), w.worldVertices(i), b.rotation(), b.x, b.q};
+    return BodyView{&w.shapeOf(i), vertices.data(), b.rotation(), b.x, b.q};
 }
 
 } // anonymous namespace
@@ -130,7 +142,8 @@ TEST(narrowPhase, twistedNearlyParallelEdgesCrossingKeepTheCoresApart)
     for (int step = 0; step < 1000; ++step)
     {
         w.step();
-        ASSERT_FALSE(coresIntersect(viewOf(w, 0), viewOf(w, 1))) << "step " << step;
+        const std::vector<Vec3> core0 = worldCore(w, 0), core1 = worldCore(w, 1);
+        ASSERT_FALSE(coresIntersect(viewOf(w, 0, core0), viewOf(w, 1, core1))) << "step " << step;
         const double d = coreDistance(w, 0, 1);
         closest = std::min(closest, d);
         if (d < rs)
@@ -180,10 +193,9 @@ TEST(narrowPhase, pairsWithASeparationCertificateCannotTouch)
             if (p.isWall())
             {
                 const Wall& wall = w->walls()[p.wall()];
-                const int n = int(w->shapeOf(p.i).core().vertices().size());
-                for (int k = 0; k < n; ++k)
+                for (const Vec3& v : worldCore(*w, p.i))
                 {
-                    EXPECT_GT(wall.normal.dot(w->worldVertices(p.i)[k] - wall.point), ri)
+                    EXPECT_GT(wall.normal.dot(v - wall.point), ri)
                         << "step " << step << " body " << p.i << " wall " << p.wall();
                 }
             }

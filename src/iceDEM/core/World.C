@@ -314,6 +314,8 @@ void World::resizeBodyFrames()
         worldVertices_.resize(vertexOffset_[N]);
         rotations_.resize(N);
         omegas_.resize(N);
+        frameEvaluation_.reset(new std::atomic<long>[N]);
+        for (int i = 0; i < N; ++i) frameEvaluation_[i].store(0);
     }
 }
 
@@ -333,26 +335,41 @@ void World::updateBodyFrame(int i)
 }
 
 
-void World::prefetchBodyFrame(int i) const
+void World::ensureBodyFrame(int i)
 {
-    // The shape's vertices live in a heap block of their own: on a large
-    // field the hardware does not see them coming, and the load would stall
-    const auto& V = shapeOf(i).core().vertices();
-    const std::size_t bytes = V.size()*sizeof(Vec3);
-    prefetchRange(V.data(), bytes);
-    prefetchRange<1>(worldVertices_.data() + vertexOffset_[i], bytes);
+    std::atomic<long>& stamp = frameEvaluation_[i];
+    long seen = stamp.load(std::memory_order_acquire);
+    if (seen == evaluation_) return;
+    if
+    (
+        seen != frameBusy
+     && stamp.compare_exchange_strong(seen, frameBusy, std::memory_order_acquire)
+    )
+    {
+        updateBodyFrame(i);
+        stamp.store(evaluation_, std::memory_order_release);
+        return;
+    }
+    // Another thread is computing it (a frame takes some 50 ns)
+    while (stamp.load(std::memory_order_acquire) != evaluation_) {}
 }
 
 
 void World::prefetchPair(const ContactPair& p) const
 {
-    // What the separating-axis test reads first: the two shapes' headers
-    // and world vertices (body j is anywhere in memory)
-    prefetchRange(&shapeOf(p.i), sizeof(DilatedShape));
-    prefetchRange(worldVertices(p.i), shapeOf(p.i).core().vertices().size()*sizeof(Vec3));
-    if (p.isWall()) return;
-    prefetchRange(&shapeOf(p.j), sizeof(DilatedShape));
-    prefetchRange(worldVertices(p.j), shapeOf(p.j).core().vertices().size()*sizeof(Vec3));
+    // What the world frames and the separating-axis test read first: the
+    // two shapes' headers and vertices, and the world vertices (body j is
+    // anywhere in memory)
+    auto prefetchBody = [this](int i)
+    {
+        const auto& V = shapeOf(i).core().vertices();
+        const std::size_t bytes = V.size()*sizeof(Vec3);
+        prefetchRange(&shapeOf(i), sizeof(DilatedShape));
+        prefetchRange(V.data(), bytes);
+        prefetchRange(worldVertices(i), bytes);
+    };
+    prefetchBody(p.i);
+    if (!p.isWall()) prefetchBody(p.j);
 }
 
 
@@ -364,6 +381,7 @@ void World::updateWorldVertices()
     for (int i = 0; i < N; ++i)
     {
         updateBodyFrame(i);
+        frameEvaluation_[i].store(evaluation_);
     }
 }
 
@@ -674,6 +692,8 @@ void World::pairForces(double dtTangential)
                 }
                 continue;
             }
+            ensureBodyFrame(p.i);
+            if (!p.isWall()) ensureBodyFrame(p.j);
 
             FeaturePairList list;
             list.entries = entries;
@@ -878,6 +898,8 @@ void World::bodyForces(double dtKick)
 
 void World::computeForces(double dtTangential)
 {
+    resizeBodyFrames();
+    ++evaluation_;
     preparePairs();
     const int nPairs = static_cast<int>(nlist_->pairs().size());
     #pragma omp parallel if(nPairs >= minParallelLoop)
@@ -895,6 +917,7 @@ void World::stepBy(double dt)
         initialise();
     }
     resizeBodyFrames();
+    ++evaluation_;
     preparePairs();
     const int N = static_cast<int>(bodies_.size());
 
@@ -909,8 +932,9 @@ void World::stepBy(double dt)
     // machine each waits for the slowest thread)
     #pragma omp parallel if(N >= minParallelBodies)
     {
-        // First half kick, drift, rotation; then the body's world frame and
-        // the neighbour list's check (some body moved more than skin/2)
+        // First half kick, drift, rotation; then the neighbour list's
+        // check (some body moved more than skin/2) and the body's motion
+        // bound (the world frames follow in the pair loop, where needed)
         #pragma omp for schedule(static) reduction(||: rebuild)
         for (int i = 0; i < N; ++i)
         {
@@ -921,8 +945,6 @@ void World::stepBy(double dt)
                 b.x += dt*b.v;
                 rotateFree(b.q, b.L, b.invInertia, dt);
             }
-            if (i + prefetchAhead < N) prefetchBodyFrame(i + prefetchAhead);
-            updateBodyFrame(i);
             if (listCoversBodies && nlist_->track(i, b.x, b.q))
             {
                 rebuild = true;
