@@ -653,15 +653,16 @@ void World::pairForces(double dtTangential)
         const StoredFeatureList* oldLists = nl.featureLists().data();
         const std::uint32_t* oldEntries = nl.listEntries().data();
 
-        // A pair's new feature-pair list into this thread's scratch
+        // A pair's new feature-pair list into this thread's scratch; until
+        // the pool pass, the pair's featureList is its index there
         auto stageList = [&S]
         (
-            std::array<int, 3>& st,
+            ContactPair& p,
             StoredFeatureList L,
             const std::uint32_t* from
         )
         {
-            st[2] = static_cast<int>(S.lists.size());
+            p.featureList = static_cast<int>(S.lists.size());
             L.firstEntry = static_cast<int>(S.entries.size());
             S.lists.push_back(L);
             S.entries.insert(S.entries.end(), from, from + L.count);
@@ -675,23 +676,23 @@ void World::pairForces(double dtTangential)
             {
                 prefetchPair(pairs[k + prefetchAhead]);
             }
-            std::array<int, 3>& st = staged_[k];
-            st = {thread, static_cast<int>(S.contacts.size()), -1};
-
             // A pair whose separation certificate still holds cannot touch:
             // no narrow phase (nor reads of its bodies' shapes and world
             // vertices); its feature-pair list is kept as the narrow phase
-            // would keep it, after a separating axis
+            // would keep it, after a separating axis. Most such pairs write
+            // nothing: their cache lines stay shared between the threads
             if (nl.separated(p))
             {
                 if (p.nContacts > 0) clearPairForces(p);
                 if (p.featureList >= 0)
                 {
+                    staged_[k] = {thread, 0};
                     const StoredFeatureList& L = oldLists[p.featureList];
-                    stageList(st, L, oldEntries + L.firstEntry);
+                    stageList(p, L, oldEntries + L.firstEntry);
                 }
                 continue;
             }
+            staged_[k] = {thread, static_cast<int>(S.contacts.size())};
             ensureBodyFrame(p.i);
             if (!p.isWall()) ensureBodyFrame(p.j);
 
@@ -753,7 +754,11 @@ void World::pairForces(double dtTangential)
                 L.qA = list.qA;
                 L.qB = list.qB;
                 L.count = list.count;
-                stageList(st, L, entries);
+                stageList(p, L, entries);
+            }
+            else if (p.featureList >= 0)
+            {
+                p.featureList = -1;
             }
         }
 
@@ -782,11 +787,11 @@ void World::pairForces(double dtTangential)
         mine = PoolCounts();
         for (int k = share.begin; k < share.end; ++k)
         {
-            mine.contacts += pairs[k].nContacts;
-            const int l = staged_[k][2];
-            if (l < 0) continue;
+            const ContactPair& p = pairs[k];
+            mine.contacts += p.nContacts;
+            if (p.featureList < 0) continue;
             ++mine.lists;
-            mine.entries += scratch_[staged_[k][0]].lists[l].count;
+            mine.entries += scratch_[staged_[k][0]].lists[p.featureList].count;
         }
         #pragma omp barrier
 
@@ -799,22 +804,24 @@ void World::pairForces(double dtTangential)
         }
 
         // No barrier after this: what follows in the step (body sums) reads
-        // the pairs' forces, not the pools
+        // the pairs' forces, not the pools. A pair's header is written only
+        // where it changes (a pair without contacts or list keeps its line
+        // shared with the thread that reads it next)
         for (int k = share.begin; k < share.end; ++k)
         {
             ContactPair& p = pairs[k];
-            const PairScratch& T = scratch_[staged_[k][0]];
-            p.firstContact = offset.contacts;
-            const StoredContact* from = T.contacts.data() + staged_[k][1];
-            std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
-            offset.contacts += p.nContacts;
-
-            const int l = staged_[k][2];
-            if (l < 0)
+            if (p.firstContact != offset.contacts) p.firstContact = offset.contacts;
+            if (p.nContacts > 0)
             {
-                p.featureList = -1;
-                continue;
+                const StoredContact* from =
+                    scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
+                std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
+                offset.contacts += p.nContacts;
             }
+
+            if (p.featureList < 0) continue;
+            const PairScratch& T = scratch_[staged_[k][0]];
+            const int l = p.featureList;
             p.featureList = offset.lists++;
             StoredFeatureList& L = nl.featureLists()[p.featureList];
             L = T.lists[l];
