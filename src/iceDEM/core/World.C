@@ -647,7 +647,7 @@ void World::pairForces(double dtTangential)
         PairScratch& S = scratch_[thread];
 
         FoundContact found[maxContactsPerPair];
-        std::uint32_t entries[FeaturePairList::capacity];
+        std::uint32_t listBuffer[FeaturePairList::capacity];
         // The pools of the last evaluation, read only in this loop
         const StoredContact* oldContacts = nl.contacts().data();
         const StoredFeatureList* oldLists = nl.featureLists().data();
@@ -697,16 +697,17 @@ void World::pairForces(double dtTangential)
             if (!p.isWall()) ensureBodyFrame(p.j);
 
             FeaturePairList list;
-            list.entries = entries;
+            list.buffer = listBuffer;
             if (p.featureList >= 0)
             {
                 const StoredFeatureList& L = oldLists[p.featureList];
                 list.count = L.count;
-                std::copy(oldEntries + L.firstEntry, oldEntries + L.firstEntry + L.count, entries);
+                list.entries = oldEntries + L.firstEntry;
                 list.xA = L.xA;
                 list.xB = L.xB;
                 list.qA = L.qA;
                 list.qB = L.qB;
+                list.touched = p.nContacts > 0;
             }
             double separation = std::numeric_limits<double>::lowest();
             const int nFound = findPairContacts
@@ -754,7 +755,7 @@ void World::pairForces(double dtTangential)
                 L.qA = list.qA;
                 L.qB = list.qB;
                 L.count = list.count;
-                stageList(p, L, entries);
+                stageList(p, L, list.entries);
             }
             else if (p.featureList >= 0)
             {

@@ -817,7 +817,11 @@ public:
     :
         search_(search), list_(list), reach_(reach), skin_(skin)
     {
-        if (list_) list_->count = 0;
+        if (list_)
+        {
+            list_->count = 0;
+            list_->entries = list_->buffer;
+        }
     }
 
     bool recording() const { return list_ != nullptr; }
@@ -834,7 +838,7 @@ public:
             list_ = nullptr;
             return;
         }
-        list_->entries[list_->count++] = listEntry(kind, a, b);
+        list_->buffer[list_->count++] = listEntry(kind, a, b);
     }
 };
 
@@ -919,7 +923,7 @@ int findContacts
     double bestMaxA = 0, bestMinB = 0;
     for (int k = 0; k < nAxes; ++k)
     {
-        if (k > 0 && useList()) break;
+        if ((k > 0 || (list && list->touched)) && useList()) break;
         const Vec3& a = axes[k];
         double maxA = -std::numeric_limits<double>::max();
         double minB = std::numeric_limits<double>::max();
