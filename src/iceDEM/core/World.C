@@ -312,7 +312,6 @@ void World::resizeBodyFrames()
                 vertexOffset_[i] + int(shapeOf(i).core().vertices().size());
         }
         worldVertices_.resize(vertexOffset_[N]);
-        rotations_.resize(N);
         omegas_.resize(N);
         frameEvaluation_.reset(new std::atomic<long>[N]);
         for (int i = 0; i < N; ++i) frameEvaluation_[i].store(0);
@@ -324,7 +323,6 @@ void World::updateBodyFrame(int i)
 {
     const Body& b = bodies_[i];
     const Mat3 R = b.rotation();
-    rotations_[i] = R;
     omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
     const auto& V = shapeOf(i).core().vertices();
     Vec3* w = worldVertices_.data() + vertexOffset_[i];
@@ -569,14 +567,14 @@ int World::findPairContacts
 ) const
 {
     const Body& bi = bodies_[p.i];
-    const BodyView A{&shapeOf(p.i), worldVertices(p.i), rotations_[p.i], bi.x, bi.q};
+    const BodyView A{&shapeOf(p.i), worldVertices(p.i), bi.rotation(), bi.x, bi.q};
     if (p.isWall())
     {
         const Wall& w = walls_[p.wall()];
         return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair, separation);
     }
     const Body& bj = bodies_[p.j];
-    const BodyView B{&shapeOf(p.j), worldVertices(p.j), rotations_[p.j], bj.x, bj.q};
+    const BodyView B{&shapeOf(p.j), worldVertices(p.j), bj.rotation(), bj.x, bj.q};
     NarrowPhaseSettings nps;
     nps.parallelEdgeSin = settings_.parallelEdgeSin;
     nps.featureSkin = featureSkin_;
