@@ -244,12 +244,9 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
             s.thickness.distribution =
                 iceDEM::thicknessDistributionFromName(dist);
         }
-        catch (const iceDEM::Error&)
+        catch (const iceDEM::Error& err)
         {
-            FatalIOErrorInFunction(*td)
-                << "entry 'thickness': unknown distribution '" << dist
-                << "'; valid: constant uniform normal" << nl
-                << exit(FatalIOError);
+            fatalCoreError(dict, err);
         }
         using D = iceDEM::ThicknessSettings::Distribution;
         switch (s.thickness.distribution)
@@ -293,7 +290,10 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
     s.lloydIterations =
         dict.getOrDefault<label>("lloydIterations", s.lloydIterations);
 
-    const word numbering = dict.getOrDefault<word>("floeNumbering", "hilbert");
+    const word numbering = dict.getOrDefault<word>
+    (
+        "floeNumbering", iceDEM::floeNumberingName(s.floeNumbering)
+    );
     try
     {
         s.floeNumbering = iceDEM::floeNumberingFromName(numbering);

@@ -523,7 +523,7 @@ ThicknessSettings::Distribution thicknessDistributionFromName
     throw Error
     (
         "unknown thickness distribution '" + name
-      + "'; valid: constant uniform normal",
+      + "'; valid: 3(constant normal uniform)",
         "thickness"
     );
 }
@@ -1054,9 +1054,15 @@ FloeNumbering floeNumberingFromName(const std::string& name)
     if (name == "seed") return FloeNumbering::seed;
     throw Error
     (
-        "unknown floe numbering '" + name + "' (valid: hilbert, seed)",
+        "unknown floeNumbering '" + name + "'; valid: 2(hilbert seed)",
         "floeNumbering"
     );
+}
+
+
+const char* floeNumberingName(FloeNumbering n)
+{
+    return n == FloeNumbering::hilbert ? "hilbert" : "seed";
 }
 
 
