@@ -275,6 +275,8 @@ TEST(Buoyancy, heavePeriodAndDraft)
     while (fw.world->time() < 4.5*T)
     {
         fw.world->step();
+        // A world with a model keeps the box's derived outer polyhedron
+        ASSERT_TRUE(fw.world->shapes()[0].outerKept());
         t.push_back(fw.world->time());
         z.push_back(fw.floe().x.z() - zEq);
         zMin = std::min(zMin, fw.floe().x.z());

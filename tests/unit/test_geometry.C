@@ -328,3 +328,45 @@ TEST(geometry, outerPolyhedronDerivedOrStored)
         }
     }
 }
+
+
+TEST(geometry, keptOuterPolyhedronIsTheDerivedOne)
+{
+    // keepOuter() (a world with hydrodynamic models) stores what outer()
+    // derives: the same numbers, bit for bit, so the clipping gives the
+    // same forces whether a shape's outer polyhedron is kept or derived
+    const std::vector<Vec2> polygon =
+        {{0.1, 0.2}, {2.3, -0.7}, {3.9, 1.1}, {3.1, 3.3}, {0.9, 3.7}, {-0.6, 2.05}};
+    const DilatedShape derived(ConvexPolyhedron::prism(polygon, -0.45, 0.9), 0.1);
+    DilatedShape kept = derived;
+    kept.keepOuter();
+    EXPECT_FALSE(derived.outerKept());
+    EXPECT_TRUE(kept.outerKept());
+    EXPECT_GT(kept.heapBytes(), derived.heapBytes());
+
+    PolyhedronBuffer a, b;
+    const PolyhedronView D = derived.outer(a);
+    const PolyhedronView K = kept.outer(b);
+    EXPECT_TRUE(b.vertices.empty());    // not derived into the caller's buffer
+    ASSERT_EQ(D.vertices().size(), K.vertices().size());
+    for (std::size_t v = 0; v < D.vertices().size(); ++v)
+    {
+        EXPECT_EQ(D.vertices()[v], K.vertices()[v]);
+    }
+    ASSERT_EQ(D.faces().size(), K.faces().size());
+    for (std::size_t f = 0; f < D.faces().size(); ++f)
+    {
+        EXPECT_EQ(D.faces()[f].normal, K.faces()[f].normal);
+        EXPECT_EQ(D.faces()[f].offset, K.faces()[f].offset);
+    }
+
+    // A pyramid's outer polyhedron is stored; keeping changes nothing
+    DilatedShape pyramid
+    (
+        ConvexPolyhedron::hull({{-1, -1, 0}, {1.2, -1, 0}, {1, 1.1, 0}, {-1, 1, 0}, {0.1, 0.05, 1.4}}),
+        0.1
+    );
+    pyramid.keepOuter();
+    EXPECT_TRUE(pyramid.outerStored());
+    EXPECT_FALSE(pyramid.outerKept());
+}

@@ -269,19 +269,25 @@ void World::addForceModel(const std::shared_ptr<BodyForceModel>& m)
     forceModels_.push_back(m);
     if (initialised_)
     {
-        sizeModelSums();
+        prepareModels();
     }
 }
 
 
-void World::sizeModelSums()
+void World::prepareModels()
 {
-    // Only a world with models needs them (memory per floe, issue 7)
+    // Only a world with models needs the sums (memory per floe, issue 7)
     const std::size_t n = forceModels_.empty() ? 0 : bodies_.size();
     modelForce_.assign(n, Vec3::Zero());
     modelTorque_.assign(n, Vec3::Zero());
     modelForce_.shrink_to_fit();
     modelTorque_.shrink_to_fit();
+    // Buoyancy and drag clip every floe's outer polyhedron at every step:
+    // kept, not derived each time (a quarter of a Kulluk run otherwise)
+    if (!forceModels_.empty())
+    {
+        for (DilatedShape& s : shapes_) s.keepOuter();
+    }
 }
 
 
@@ -461,7 +467,7 @@ void World::initialise(bool restart)
         }
     }
 
-    sizeModelSums();
+    prepareModels();
 
     vertexOffset_.clear();
     updateWorldVertices();

@@ -164,6 +164,13 @@ PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
     {
         return storedOuter_->view();
     }
+    if (keptOuter_)
+    {
+        return PolyhedronView
+        (
+            core_.topology(), keptOuter_->vertices.data(), keptOuter_->planes.data()
+        );
+    }
 
     const auto V = core_.vertices();
     const auto F = core_.faces();
@@ -188,10 +195,29 @@ PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
 }
 
 
+void DilatedShape::keepOuter()
+{
+    if (storedOuter_ || keptOuter_)
+    {
+        return;
+    }
+    auto kept = std::make_shared<PolyhedronBuffer>();
+    outer(*kept);
+    keptOuter_ = std::move(kept);
+}
+
+
 std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes()
         + (storedOuter_ ? sizeof(ConvexPolyhedron) + storedOuter_->heapBytes() : 0)
+        + (
+            keptOuter_
+          ? sizeof(PolyhedronBuffer)
+          + keptOuter_->vertices.capacity()*sizeof(Vec3)
+          + keptOuter_->planes.capacity()*sizeof(ConvexPolyhedron::Plane)
+          : 0
+          )
         + edgeLength_.capacity()*sizeof(double);
 }
 
