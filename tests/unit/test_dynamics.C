@@ -316,6 +316,30 @@ TEST(invariants, resultsDoNotDependOnTheNumberOfThreads)
 }
 
 
+TEST(invariants, parallelStepDoesNotDependOnTheNumberOfThreads)
+{
+    // A step runs in parallel from 1000 bodies up (below, on one thread
+    // whatever the team): the same check on 1200, where the pair loop's
+    // threads share world frames, certificates and the pools
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    auto a = makeField(1200, 5);
+    int touching = 0;
+    while (a->time() < 0.6)
+    {
+        a->step();
+        touching = std::max(touching, a->contactPairCount());
+    }
+    omp_set_num_threads(std::max(2, threads));
+    auto b = makeField(1200, 5);
+    b->advanceTo(a->time());
+    omp_set_num_threads(threads);
+    EXPECT_GT(a->neighbourListBuilds(), 1);
+    EXPECT_GT(touching, 20);
+    expectSameState(*a, *b);
+}
+
+
 TEST(invariants, restartEqualsUninterruptedRun)
 {
     auto a = makeField(100, 11);
