@@ -580,6 +580,8 @@ struct RunResult
     //  a steadier measure of the work than the wall time
     double cpu = 0;
     double contactsPerStep = 0;     //!< mean contactPairCount()
+    double searchedPerStep = 0;     //!< mean searchedPairCount()
+    double candidatePairs = 0;      //!< neighbour-list pairs at the end
     std::uint64_t hash = 0;
     long rebuilds = 0;
     double rssPerFloe = 0;          //!< bytes, world built and stepped
@@ -630,7 +632,7 @@ RunResult runOnce
     std::unique_ptr<World> world = buildWorld(f, o, snap);
     const long buildsBefore = world->neighbourListBuilds();
 
-    long contactSum = 0;
+    long contactSum = 0, searchedSum = 0;
     double wall = 0;
     double cpu = 0;
 #if HAVE_CALLGRIND
@@ -649,6 +651,7 @@ RunResult runOnce
         wall += std::chrono::duration<double>(t1 - t0).count();
         cpu += processCpuSeconds() - c0;
         contactSum += world->contactPairCount();
+        searchedSum += world->searchedPairCount();
     }
 #if HAVE_CALLGRIND
     if (o.callgrind)
@@ -662,6 +665,8 @@ RunResult runOnce
     r.wall = wall;
     r.cpu = cpu;
     r.contactsPerStep = steps > 0 ? double(contactSum)/steps : 0;
+    r.searchedPerStep = steps > 0 ? double(searchedSum)/steps : 0;
+    r.candidatePairs = world->neighbourList().pairs().size();
     r.hash = stateHash(*world);
     r.rebuilds = world->neighbourListBuilds() - buildsBefore;
     if (measureMemory)
@@ -743,6 +748,7 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
         std::vector<double> walls, cpus, contacts;
         std::uint64_t hash = 0;
         long rebuilds = 0;
+        double searched = 0, candidates = 0;
         for (int rep = 0; rep < o.reps; ++rep)
         {
             const RunResult r = runOnce(f, o, snap, steps, memory && first && rep == 0);
@@ -753,6 +759,8 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
             {
                 hash = r.hash;
                 rebuilds = r.rebuilds;
+                searched = r.searchedPerStep;
+                candidates = r.candidatePairs;
             }
             else if (r.hash != hash)
             {
@@ -783,6 +791,8 @@ bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool
         for (double x : cpus) std::printf(" %.4g", x);
         std::printf("  neighbour_list_builds=%ld  state_hash=%016llx\n",
             rebuilds, static_cast<unsigned long long>(hash));
+        std::printf("#   searched_pairs_per_step=%.1f of %.0f candidate pairs (the"
+            " others certified apart)\n", searched, candidates);
         std::fflush(stdout);
     }
     if (o.threads.size() > 1)

@@ -39,6 +39,7 @@ constexpr int prefetchAhead = 2;
 struct ThreadShare
 {
     int thread = 0;
+    int nThreads = 1;
     int begin = 0;
     int end = 0;
 
@@ -46,9 +47,7 @@ struct ThreadShare
     {
         #ifdef _OPENMP
         thread = omp_get_thread_num();
-        const int nThreads = omp_get_num_threads();
-        #else
-        const int nThreads = 1;
+        nThreads = omp_get_num_threads();
         #endif
         begin = static_cast<int>(static_cast<long>(n)*thread/nThreads);
         end = static_cast<int>(static_cast<long>(n)*(thread + 1)/nThreads);
@@ -117,8 +116,10 @@ struct World::PoolCounts
     int contacts = 0;
     int lists = 0;
     int entries = 0;
+    //- Pairs this thread searched in the pair loop (diagnostics)
+    int searched = 0;
     //- One cache line per thread (no false sharing)
-    char pad[64 - 3*sizeof(int)];
+    char pad[64 - 4*sizeof(int)];
 };
 
 
@@ -672,6 +673,7 @@ void World::pairForces(double dtTangential)
             S.entries.insert(S.entries.end(), from, from + L.count);
         };
 
+        int searched = 0;
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
         {
@@ -697,6 +699,7 @@ void World::pairForces(double dtTangential)
                 continue;
             }
             staged_[k] = {thread, static_cast<int>(S.contacts.size())};
+            ++searched;
             ensureBodyFrame(p.i);
             if (!p.isWall()) ensureBodyFrame(p.j);
 
@@ -790,6 +793,7 @@ void World::pairForces(double dtTangential)
 
         PoolCounts& mine = chunkCounts_[thread];
         mine = PoolCounts();
+        mine.searched = searched;
         for (int k = share.begin; k < share.end; ++k)
         {
             const ContactPair& p = pairs[k];
@@ -799,6 +803,12 @@ void World::pairForces(double dtTangential)
             mine.entries += scratch_[staged_[k][0]].lists[p.featureList].count;
         }
         #pragma omp barrier
+
+        if (thread == 0)
+        {
+            searchedPairs_ = 0;
+            for (int t = 0; t < share.nThreads; ++t) searchedPairs_ += chunkCounts_[t].searched;
+        }
 
         PoolCounts offset;
         for (int t = 0; t < thread; ++t)
