@@ -591,7 +591,7 @@ struct RunResult
 
 //- Candidate pairs of the neighbour list's criterion (bounding spheres
 //  closer than the skin, walls), counted by brute force at the current
-//  positions: the core does not expose its list
+//  positions, independently of the core's list
 long estimateCandidatePairs(const World& w, double skin)
 {
     const auto& B = w.bodies();
