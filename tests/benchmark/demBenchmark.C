@@ -589,34 +589,6 @@ struct RunResult
 };
 
 
-//- Candidate pairs of the neighbour list's criterion (bounding spheres
-//  closer than the skin, walls), counted by brute force at the current
-//  positions, independently of the core's list
-long estimateCandidatePairs(const World& w, double skin)
-{
-    const auto& B = w.bodies();
-    const int n = static_cast<int>(B.size());
-    long pairs = 0;
-    for (int i = 0; i < n; ++i)
-    {
-        for (int j = i + 1; j < n; ++j)
-        {
-            const double reach =
-                w.shapeOf(i).boundingRadius() + w.shapeOf(j).boundingRadius() + skin;
-            if ((B[i].x - B[j].x).squaredNorm() < reach*reach) ++pairs;
-        }
-        for (const Wall& wall : w.walls())
-        {
-            if (wall.normal.dot(B[i].x - wall.point) < w.shapeOf(i).boundingRadius() + skin)
-            {
-                ++pairs;
-            }
-        }
-    }
-    return pairs;
-}
-
-
 RunResult runOnce
 (
     const Field& f,
@@ -678,8 +650,7 @@ RunResult runOnce
         // Breakdown: what the core stores per body and per candidate pair
         // (vector capacities as the core reports them; allocator overhead,
         // about 16 B per heap block, excluded)
-        const double skin = o.skin > 0 ? o.skin : kRadius;
-        const long pairs = estimateCandidatePairs(*world, skin);
+        const double pairs = r.candidatePairs;
         // Per shape: the object, its own heap (the core's vertices and face
         // planes, edge lengths, a stored outer polyhedron); the topologies
         // are shared between shapes: each distinct one counted once
@@ -707,7 +678,7 @@ RunResult runOnce
             " | per floe: Body %zu B, shape %.0f B (sizeof %zu + heap: core"
             " vertices and face planes, edge lengths, stored outer polyhedra;"
             " + %zu shared"
-            " topologies %.0f B), world vertices,"
+            " topologies %.0f B), world vertices"
             " and omega %.0f B; contact state %.0f B per floe"
             " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"
             " StoredContact %zu B per contact, feature lists %zu B + 4 B per entry)\n",
