@@ -372,3 +372,18 @@ TEST(Buoyancy, heeledFloeSettlesLevelAtDraft)
     EXPECT_LT(fw.tilt(), 1e-3);
     EXPECT_LT(fw.floe().v.norm(), 1e-4);
 }
+
+
+TEST(Buoyancy, worldKeepsOuterPolyhedraOnlyForModelsThatReadThem)
+{
+    // A model that does not clip (the damper) leaves the shapes deriving
+    // their outer polyhedra on demand (memory per floe); buoyancy, added
+    // later, makes the world keep them
+    FloeWorld fw(4, 4, 1, -0.5);
+    fw.world->addForceModel(std::make_shared<LinearDamper>(1.5));
+    fw.world->step();
+    EXPECT_FALSE(fw.world->shapes()[0].outerKept());
+    fw.world->addForceModel(std::make_shared<Buoyancy>(WaterSettings{rhoWater, 0}));
+    EXPECT_TRUE(fw.world->shapes()[0].outerKept());
+    EXPECT_FALSE(fw.world->shapes()[0].outerStored());
+}

@@ -285,9 +285,11 @@ void World::prepareModels()
     modelTorque_.shrink_to_fit();
     // Buoyancy and drag clip every floe's outer polyhedron at every step:
     // kept, not derived each time (a quarter of a Kulluk run otherwise)
-    if (!forceModels_.empty())
+    for (const auto& m : forceModels_)
     {
+        if (!m->readsOuterPolyhedra()) continue;
         for (DilatedShape& s : shapes_) s.keepOuter();
+        break;
     }
 }
 

@@ -133,6 +133,21 @@ void ConvexPolyhedron::allocateGeometry()
 }
 
 
+ConvexPolyhedron::ConvexPolyhedron
+(
+    std::shared_ptr<const PolyhedronTopology> topology,
+    const Vec3* vertices,
+    const Plane* planes
+)
+:
+    topology_(std::move(topology))
+{
+    allocateGeometry();
+    std::copy(vertices, vertices + topology_->nVertices(), vertexData());
+    std::copy(planes, planes + topology_->nFaces(), planeData());
+}
+
+
 ConvexPolyhedron::ConvexPolyhedron(const ConvexPolyhedron& P)
 :
     topology_(P.topology_)

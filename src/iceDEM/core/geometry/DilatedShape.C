@@ -164,13 +164,6 @@ PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
     {
         return storedOuter_->view();
     }
-    if (keptOuter_)
-    {
-        return PolyhedronView
-        (
-            core_.topology(), keptOuter_->vertices.data(), keptOuter_->planes.data()
-        );
-    }
 
     const auto V = core_.vertices();
     const auto F = core_.faces();
@@ -197,13 +190,17 @@ PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
 
 void DilatedShape::keepOuter()
 {
-    if (storedOuter_ || keptOuter_)
+    if (storedOuter_)
     {
         return;
     }
-    auto kept = std::make_shared<PolyhedronBuffer>();
-    outer(*kept);
-    keptOuter_ = std::move(kept);
+    PolyhedronBuffer derived;
+    outer(derived);
+    storedOuter_ = std::make_shared<const ConvexPolyhedron>
+    (
+        core_.sharedTopology(), derived.vertices.data(), derived.planes.data()
+    );
+    outerKept_ = true;
 }
 
 
@@ -211,13 +208,6 @@ std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes()
         + (storedOuter_ ? sizeof(ConvexPolyhedron) + storedOuter_->heapBytes() : 0)
-        + (
-            keptOuter_
-          ? sizeof(PolyhedronBuffer)
-          + keptOuter_->vertices.capacity()*sizeof(Vec3)
-          + keptOuter_->planes.capacity()*sizeof(ConvexPolyhedron::Plane)
-          : 0
-          )
         + edgeLength_.capacity()*sizeof(double);
 }
 
