@@ -1,0 +1,165 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "FloeDamping.H"
+#include "WaterClip.H"
+
+#include <cmath>
+#include <string>
+
+namespace iceDEM
+{
+
+void checkFloeDampingSettings(const FloeDampingSettings& s)
+{
+    if (!std::isfinite(s.heave) || !(s.heave >= 0))
+    {
+        throw Error
+        (
+            "floeDamping: heave " + std::to_string(s.heave)
+          + " must be zero or positive (fraction of critical damping)",
+            "heave"
+        );
+    }
+    if (!std::isfinite(s.rollPitch) || !(s.rollPitch >= 0))
+    {
+        throw Error
+        (
+            "floeDamping: rollPitch " + std::to_string(s.rollPitch)
+          + " must be zero or positive (fraction of critical damping)",
+            "rollPitch"
+        );
+    }
+}
+
+
+Waterplane waterplane
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const Vec3& x,
+    double level
+)
+{
+    // Lid integrals of 1, x, y, x^2, y^2 (coordinates relative to x) as
+    // minus the wet faces' integrals weighted by n_z, i.e. over their signed
+    // projections on the horizontal plane; the midpoint rule on the edges
+    // of each fan triangle is exact for quadratics
+    double A = 0, Sx = 0, Sy = 0, Qxx = 0, Qyy = 0;
+    SubmergedFace face;
+    const int nf = static_cast<int>(P.faces().size());
+    for (int f = 0; f < nf; ++f)
+    {
+        if (!submergedFace(P, f, R, x, level, face)) continue;
+        const Vec3 q0 = face.vertices[0] - x;
+        for (int k = 1; k + 1 < face.nVertices; ++k)
+        {
+            const Vec3 q1 = face.vertices[k] - x;
+            const Vec3 q2 = face.vertices[k + 1] - x;
+            const double ap = 0.5*((q1 - q0).cross(q2 - q0)).z();
+            if (ap == 0) continue;
+            const Vec3 m01 = 0.5*(q0 + q1);
+            const Vec3 m12 = 0.5*(q1 + q2);
+            const Vec3 m20 = 0.5*(q2 + q0);
+            A -= ap;
+            Sx -= ap*(q0.x() + q1.x() + q2.x())/3;
+            Sy -= ap*(q0.y() + q1.y() + q2.y())/3;
+            Qxx -= ap*(m01.x()*m01.x() + m12.x()*m12.x() + m20.x()*m20.x())/3;
+            Qyy -= ap*(m01.y()*m01.y() + m12.y()*m12.y() + m20.y()*m20.y())/3;
+        }
+    }
+
+    Waterplane w;
+    if (!(A > 0)) return w;
+    w.area = A;
+    const double xF = Sx/A;
+    const double yF = Sy/A;
+    w.centroid = x + Vec3(xF, yF, level - x.z());
+    w.Ixx = std::max(0.0, Qxx - A*xF*xF);
+    w.Iyy = std::max(0.0, Qyy - A*yF*yF);
+    return w;
+}
+
+
+FloeDamping::FloeDamping
+(
+    const WaterSettings& water,
+    const FloeDampingSettings& settings
+)
+:
+    water_(water),
+    settings_(settings)
+{
+    checkWaterSettings(water_);
+    checkFloeDampingSettings(settings_);
+}
+
+
+const char* FloeDamping::name() const
+{
+    return "floeDamping";
+}
+
+
+Vec3 FloeDamping::coefficients(const World& world, int i) const
+{
+    Vec3 c = Vec3::Zero();
+    const Body& b = world.bodies()[i];
+    const double rhoG = water_.density*world.settings().gravity.norm();
+    if (!b.isFree() || rhoG == 0) return c;
+
+    static thread_local PolyhedronBuffer outerBuffer;
+    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
+    const Mat3 R = b.rotation();
+
+    const Waterplane wp = waterplane(P, R, b.x, water_.level);
+    if (wp.area == 0) return c;
+
+    const double k3 = rhoG*wp.area;
+    c.x() = 2*settings_.heave*std::sqrt(b.mass*k3);
+
+    if (settings_.rollPitch > 0)
+    {
+        const SubmergedVolume sub =
+            submergedVolume(P, R, b.x, water_.level);
+        const double VBG = sub.volume*(sub.centroid.z() - b.x.z());
+        const double k4 = rhoG*(wp.Iyy + VBG);
+        const double k5 = rhoG*(wp.Ixx + VBG);
+        // World inertia about G: R diag(I) R^T
+        const Vec3 I = b.invInertia.cwiseInverse();
+        const Mat3 Iw = R*I.asDiagonal()*R.transpose();
+        if (k4 > 0) c.y() = 2*settings_.rollPitch*std::sqrt(Iw(0, 0)*k4);
+        if (k5 > 0) c.z() = 2*settings_.rollPitch*std::sqrt(Iw(1, 1)*k5);
+    }
+    return c;
+}
+
+
+void FloeDamping::addForces
+(
+    const World& world,
+    int begin,
+    int end,
+    Vec3* force,
+    Vec3* torque
+) const
+{
+    if (settings_.heave == 0 && settings_.rollPitch == 0) return;
+
+    const std::vector<Body>& bodies = world.bodies();
+    for (int i = begin; i < end; ++i)
+    {
+        const Body& b = bodies[i];
+        if (!b.isFree()) continue;
+        const Vec3 c = coefficients(world, i);
+        if (c.isZero(0)) continue;
+        const Vec3 omega = b.omega();
+        force[i].z() -= c.x()*b.v.z();
+        torque[i].x() -= c.y()*omega.x();
+        torque[i].y() -= c.z()*omega.y();
+    }
+}
+
+} // namespace iceDEM

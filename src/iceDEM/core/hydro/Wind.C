@@ -1,0 +1,356 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "Wind.H"
+
+#include <cmath>
+#include <string>
+
+namespace iceDEM
+{
+
+// * * * * * * * * * * * * * * * * WindHistory * * * * * * * * * * * * * * //
+
+WindHistory::WindHistory()
+:
+    table_{{0.0, Vec3::Zero()}}
+{}
+
+
+WindHistory::WindHistory(const Vec3& velocity)
+:
+    WindHistory(std::vector<std::pair<double, Vec3>>{{0.0, velocity}})
+{}
+
+
+WindHistory::WindHistory(std::vector<std::pair<double, Vec3>> table)
+:
+    table_(std::move(table))
+{
+    if (table_.empty())
+    {
+        throw Error("wind: the table has no rows", "table");
+    }
+    for (std::size_t k = 0; k < table_.size(); ++k)
+    {
+        const double t = table_[k].first;
+        const Vec3& u = table_[k].second;
+        if (!std::isfinite(t) || !u.allFinite())
+        {
+            throw Error
+            (
+                "wind: row " + std::to_string(k)
+              + " of the table has a non-finite time or velocity",
+                "table"
+            );
+        }
+        if (k > 0 && !(t > table_[k - 1].first))
+        {
+            throw Error
+            (
+                "wind: the times of the table must increase strictly (row "
+              + std::to_string(k) + ")",
+                "table"
+            );
+        }
+    }
+}
+
+
+Vec3 WindHistory::at(double t) const
+{
+    if (t <= table_.front().first) return table_.front().second;
+    if (t >= table_.back().first) return table_.back().second;
+
+    // Few rows: a linear search is fine (once per body-force evaluation)
+    std::size_t k = 1;
+    while (table_[k].first < t) ++k;
+    const double t0 = table_[k - 1].first;
+    const double t1 = table_[k].first;
+    const double s = (t - t0)/(t1 - t0);
+    return (1 - s)*table_[k - 1].second + s*table_[k].second;
+}
+
+
+// * * * * * * * * * * * * * * * * * Settings  * * * * * * * * * * * * * * //
+
+void checkWindSettings(const WindSettings& s)
+{
+    auto nonNegative = [](double v, const char* entry, const char* what)
+    {
+        if (!std::isfinite(v) || !(v >= 0))
+        {
+            throw Error
+            (
+                std::string("wind: ") + entry + " " + std::to_string(v)
+              + " must be zero or positive" + what,
+                entry
+            );
+        }
+    };
+    nonNegative(s.rhoAir, "rhoAir", " [kg/m3]");
+    nonNegative(s.skinCoefficient, "Cs", "");
+    nonNegative(s.formCoefficient, "Cf", "");
+    if (s.subdivision < 0 || s.subdivision > DragSettings::maxSubdivision)
+    {
+        throw Error
+        (
+            "wind: subdivision " + std::to_string(s.subdivision)
+          + " must be in 0.." + std::to_string(DragSettings::maxSubdivision)
+          + " (4^subdivision sample points per facet triangle)",
+            "subdivision"
+        );
+    }
+    if (!std::isfinite(s.topCosine) || !(s.topCosine > 0 && s.topCosine <= 1))
+    {
+        throw Error
+        (
+            "wind: topCosine " + std::to_string(s.topCosine)
+          + " must be in (0, 1]",
+            "topCosine"
+        );
+    }
+}
+
+
+// * * * * * * * * * * * * * * * Above-water clip  * * * * * * * * * * * * //
+
+bool emergedFace
+(
+    const PolyhedronView& P,
+    int f,
+    const Mat3& R,
+    const Vec3& x,
+    double level,
+    SubmergedFace& out
+)
+{
+    const PolyhedronView::Face face = P.faces()[f];
+    const int n = face.count;
+    if (n + 1 > SubmergedFace::maxVertices)
+    {
+        throw Error
+        (
+            "wind clipping: face " + std::to_string(f) + " has "
+          + std::to_string(n) + " vertices, more than the capacity "
+          + std::to_string(SubmergedFace::maxVertices - 1)
+        );
+    }
+
+    out.face = f;
+    out.nVertices = 0;
+    out.area = 0;
+
+    const auto V = P.vertices();
+
+    // Point where the edge a (height sa above the plane) - b (sb) crosses it
+    auto cross = [](const Vec3& a, double sa, const Vec3& b, double sb)
+    {
+        return a + (sa/(sa - sb))*(b - a);
+    };
+
+    // Sutherland-Hodgman against the half-space z > level (world frame)
+    Vec3 prev = R*V[P.faceVertex(f, n - 1)] + x;
+    double sPrev = prev.z() - level;
+    for (int k = 0; k < n; ++k)
+    {
+        const Vec3 cur = R*V[P.faceVertex(f, k)] + x;
+        const double sCur = cur.z() - level;
+        if (sCur > 0)
+        {
+            if (sPrev <= 0)
+            {
+                out.vertices[out.nVertices++] = cross(prev, sPrev, cur, sCur);
+            }
+            out.vertices[out.nVertices++] = cur;
+        }
+        else if (sPrev > 0)
+        {
+            out.vertices[out.nVertices++] = cross(prev, sPrev, cur, sCur);
+        }
+        prev = cur;
+        sPrev = sCur;
+    }
+
+    if (out.nVertices < 3)
+    {
+        out.nVertices = 0;
+        return false;
+    }
+
+    // Area and centroid by a fan from the first vertex
+    out.normal = R*face.normal;
+    const Vec3& q0 = out.vertices[0];
+    Vec3 first = Vec3::Zero();
+    double area = 0;
+    for (int k = 1; k + 1 < out.nVertices; ++k)
+    {
+        const Vec3& q1 = out.vertices[k];
+        const Vec3& q2 = out.vertices[k + 1];
+        const double a = 0.5*((q1 - q0).cross(q2 - q0)).dot(out.normal);
+        area += a;
+        first += (a/3.0)*(q0 + q1 + q2);
+    }
+    if (!(area > 0))
+    {
+        out.nVertices = 0;
+        return false;
+    }
+    out.area = area;
+    out.centroid = first/area;
+    return true;
+}
+
+
+// * * * * * * * * * * * * * * * * * * Wind  * * * * * * * * * * * * * * * //
+
+Wind::Wind
+(
+    const WaterSettings& water,
+    const WindSettings& settings,
+    const WindHistory& history
+)
+:
+    level_(water.level),
+    settings_(settings),
+    history_(history)
+{
+    checkWaterSettings(water);
+    checkWindSettings(settings_);
+}
+
+
+const char* Wind::name() const
+{
+    return "wind";
+}
+
+
+void Wind::bodyWind
+(
+    const World& world,
+    int i,
+    const Vec3& Ua,
+    Vec3& F,
+    Vec3& M
+) const
+{
+    constexpr int capacity = 1 << (2*DragSettings::maxSubdivision);
+
+    F.setZero();
+    M.setZero();
+
+    const Body& b = world.bodies()[i];
+    if (!b.isFree()) return;
+
+    // This thread's room for derived outer polyhedra
+    static thread_local PolyhedronBuffer outerBuffer;
+    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
+    const Mat3 R = b.rotation();
+    const Vec3 omega = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
+
+    // Nothing above the water plane (overwashed): no wind
+    {
+        const Vec3 up = R.row(2).transpose();
+        bool dry = false;
+        for (const Vec3& v : P.vertices())
+        {
+            if (up.dot(v) + b.x.z() > level_)
+            {
+                dry = true;
+                break;
+            }
+        }
+        if (!dry) return;
+    }
+
+    const double rho = settings_.rhoAir;
+    const int sub = settings_.subdivision;
+
+    SubmergedFace face;
+    Vec3 points[capacity];
+    double areas[capacity];
+
+    const int nf = static_cast<int>(P.faces().size());
+    for (int f = 0; f < nf; ++f)
+    {
+        if (!emergedFace(P, f, R, b.x, level_, face)) continue;
+
+        const Vec3& n = face.normal;
+        const bool skin = std::abs(n.z()) >= settings_.topCosine;
+        // Bulk skin formula without 1/2; form drag with 1/2
+        const double coeff =
+            skin
+          ? rho*settings_.skinCoefficient
+          : 0.5*rho*settings_.formCoefficient;
+        if (coeff == 0) continue;
+
+        for (int k = 0; k < face.nVertices; ++k)
+        {
+            const int m = faceTriangleSamples(face, k, sub, points, areas);
+            for (int j = 0; j < m; ++j)
+            {
+                const Vec3 r = points[j] - b.x;
+                const Vec3 w = b.v + omega.cross(r) - Ua;
+                const double wn = w.dot(n);
+
+                Vec3 dF;
+                if (skin)
+                {
+                    const Vec3 wt = w - wn*n;
+                    dF = (-coeff*areas[j]*wt.norm())*wt;
+                }
+                else if (wn > 0)
+                {
+                    dF = (-coeff*areas[j]*wn*wn)*n;
+                }
+                else
+                {
+                    continue;
+                }
+                F += dF;
+                M += r.cross(dF);
+            }
+        }
+    }
+}
+
+
+Vec3 Wind::totalForce(const World& world) const
+{
+    const Vec3 Ua = history_.at(world.time());
+    Vec3 total = Vec3::Zero();
+    const int N = static_cast<int>(world.bodies().size());
+    for (int i = 0; i < N; ++i)
+    {
+        Vec3 F, M;
+        bodyWind(world, i, Ua, F, M);
+        total += F;
+    }
+    return total;
+}
+
+
+void Wind::addForces
+(
+    const World& world,
+    int begin,
+    int end,
+    Vec3* force,
+    Vec3* torque
+) const
+{
+    const Vec3 Ua = history_.at(world.time());
+    for (int i = begin; i < end; ++i)
+    {
+        if (!world.bodies()[i].isFree()) continue;
+        Vec3 F, M;
+        bodyWind(world, i, Ua, F, M);
+        force[i] += F;
+        torque[i] += M;
+    }
+}
+
+} // namespace iceDEM

@@ -1,0 +1,570 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+Description
+    Wind on the floes (hydro/Wind.H) against analytic results:
+      - force and moment of a uniform relative wind equal the sum of the
+        facet forces at their centroids (exact: the sample points integrate
+        a uniform load exactly), computed here independently, on a
+        symmetric floe (no yaw) and an asymmetric one (yaw moment);
+      - free drift: a square prism floe at its draft in still water under a
+        uniform wind along a side or a diagonal reaches the speed where the
+        air drag balances the water drag,
+            K_a |U_a - u|^2 = K_w |u|^2,
+            u = U_a sqrt(K_a)/(sqrt(K_a) + sqrt(K_w)),
+        K_a = rho_a (C_sa L^2 s + 1/2 C_fa L f),
+        K_w = 1/2 rho_w (C_fw L d + C_sw L^2 s),
+        with d = rho_i/rho_w h the draft, f = h - d the freeboard, and
+        s = 1 along a side, s = sqrt(2) along a diagonal (the skin drag
+        sees |w| w, the form drag each leading side w_n^2); no spin;
+      - the same for a sparse field of floes of several sizes (no contacts);
+      - a wind table is interpolated linearly; errors name the entry;
+      - 1 thread = 2 threads and restart = uninterrupted run, bit for bit,
+        with wind (a turning table), buoyancy, drag and floe damping on.
+\*---------------------------------------------------------------------------*/
+
+#include "World.H"
+#include "hydro/Buoyancy.H"
+#include "hydro/Drag.H"
+#include "hydro/FloeDamping.H"
+#include "hydro/FlowVelocity.H"
+#include "hydro/Wind.H"
+#include "testWorlds.H"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <vector>
+
+using namespace iceDEM;
+
+namespace
+{
+
+constexpr double rhoIce = 900;
+constexpr double rhoWater = 1025;
+constexpr double g = 9.81;
+constexpr double radius = 0.05;
+
+//- World of prism floes (true size: the outer polyhedron is the prism of
+//  the given polygon, bottom zb, height h)
+struct WindWorld
+{
+    std::unique_ptr<World> world;
+    int ice = -1;
+
+    explicit WindWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
+    {
+        WorldSettings ws;
+        ws.timeStep = dt;
+        ws.gravity = gravity;
+        world = std::make_unique<World>(ws);
+        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
+    }
+
+    //- Box Lx x Ly x h with its bottom at zb
+    int addBox
+    (
+        double Lx, double Ly, double h, double zb,
+        const Vec3& centre = Vec3::Zero(),
+        const Vec3& v = Vec3::Zero()
+    )
+    {
+        const double a = 0.5*Lx - radius;
+        const double b = 0.5*Ly - radius;
+        const int shape = world->addShape
+        (
+            DilatedShape
+            (
+                ConvexPolyhedron::prism
+                (
+                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
+                    zb + radius, h - 2*radius
+                ),
+                radius
+            )
+        );
+        return world->addBody(shape, ice, centre, Quat::Identity(), v);
+    }
+
+    void addWater
+    (
+        const WindSettings& ws,
+        const WindHistory& wind,
+        bool damping = true
+    )
+    {
+        const WaterSettings water{rhoWater, 0};
+        world->addForceModel(std::make_shared<Buoyancy>(water));
+        world->addForceModel
+        (
+            std::make_shared<Drag>
+            (
+                water, DragSettings(),
+                std::make_shared<UniformCurrent>(Vec3::Zero())
+            )
+        );
+        world->addForceModel(std::make_shared<Wind>(water, ws, wind));
+        if (damping)
+        {
+            world->addForceModel
+            (
+                std::make_shared<FloeDamping>(water, FloeDampingSettings())
+            );
+        }
+    }
+
+    const Body& body(int i) const { return world->bodies()[i]; }
+};
+
+template<class F>
+void expectError(F f, const std::string& entry)
+{
+    try
+    {
+        f();
+        ADD_FAILURE() << "no Error (entry " << entry << ")";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), entry) << e.what();
+    }
+}
+
+struct SingleThread
+{
+    int saved;
+    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
+    ~SingleThread() { omp_set_num_threads(saved); }
+};
+
+//- Analytic free-drift speed of a square floe L x L x h at its draft
+//  under the wind Ua along a side (s = 1) or a diagonal (s = sqrt 2):
+//  the speed along the wind
+double freeDriftSpeed
+(
+    double L, double h, double Ua, double s,
+    const WindSettings& ws, const DragSettings& ds
+)
+{
+    const double d = rhoIce/rhoWater*h;
+    const double f = h - d;
+    const double Ka =
+        ws.rhoAir*(ws.skinCoefficient*L*L*s + 0.5*ws.formCoefficient*L*f);
+    const double Kw =
+        0.5*rhoWater*(ds.formCoefficient*L*d + ds.skinCoefficient*L*L*s);
+    return Ua*std::sqrt(Ka)/(std::sqrt(Ka) + std::sqrt(Kw));
+}
+
+} // anonymous namespace
+
+
+TEST(Wind, settingsErrorsNameTheEntry)
+{
+    const WaterSettings w;
+    WindSettings s;
+    s.rhoAir = -1;
+    expectError([&]{ Wind m(w, s, WindHistory()); }, "rhoAir");
+    s = WindSettings();
+    s.skinCoefficient = -1e-3;
+    expectError([&]{ Wind m(w, s, WindHistory()); }, "Cs");
+    s = WindSettings();
+    s.formCoefficient = std::nan("");
+    expectError([&]{ Wind m(w, s, WindHistory()); }, "Cf");
+    s = WindSettings();
+    s.subdivision = DragSettings::maxSubdivision + 1;
+    expectError([&]{ Wind m(w, s, WindHistory()); }, "subdivision");
+    s = WindSettings();
+    s.topCosine = 0;
+    expectError([&]{ Wind m(w, s, WindHistory()); }, "topCosine");
+
+    expectError
+    (
+        [&]{ WindHistory h(Vec3(std::nan(""), 0, 0)); }, "table"
+    );
+    expectError
+    (
+        [&]{ WindHistory h({{0, Vec3(1, 0, 0)}, {0, Vec3(0, 1, 0)}}); },
+        "table"
+    );
+    expectError
+    (
+        [&]
+        {
+            WindHistory h
+            ({{0, Vec3(1, 0, 0)}, {INFINITY, Vec3(0, 1, 0)}});
+        },
+        "table"
+    );
+    expectError
+    (
+        [&]{ WindHistory h(std::vector<std::pair<double, Vec3>>{}); },
+        "table"
+    );
+
+    // Documented defaults
+    EXPECT_EQ(WindSettings().rhoAir, 1.3);
+    EXPECT_EQ(WindSettings().skinCoefficient, 1.5e-3);
+    EXPECT_EQ(WindSettings().formCoefficient, 1.0);
+    EXPECT_EQ(WindHistory().at(3), Vec3::Zero());
+}
+
+
+TEST(Wind, tableIsInterpolatedLinearly)
+{
+    const WindHistory h
+    ({
+        {0, Vec3(10, 0, 0)}, {600, Vec3(0, 10, 0)}, {700, Vec3(0, 10, 0)}
+    });
+    EXPECT_EQ(h.at(-5), Vec3(10, 0, 0));
+    EXPECT_EQ(h.at(0), Vec3(10, 0, 0));
+    EXPECT_NEAR((h.at(150) - Vec3(7.5, 2.5, 0)).norm(), 0, 1e-12);
+    EXPECT_NEAR((h.at(300) - Vec3(5, 5, 0)).norm(), 0, 1e-12);
+    EXPECT_EQ(h.at(650), Vec3(0, 10, 0));
+    EXPECT_EQ(h.at(1e6), Vec3(0, 10, 0));
+}
+
+
+namespace
+{
+
+//- Force and moment about G of a uniform relative wind w (floe relative
+//  to the air) on a vertical prism with polygon 'poly' (counter-clockwise,
+//  body = world frame), bottom zb, height h, centroid G, water level 0:
+//  each side's emerged rectangle (height ztop) carries form drag at its
+//  centroid where it leads, the top skin drag at the polygon's centroid
+void facetSum
+(
+    const std::vector<Vec2>& poly, double zb, double h, const Vec3& G,
+    const Vec3& w, const WindSettings& ws, Vec3& F, Vec3& M
+)
+{
+    F.setZero();
+    M.setZero();
+    const double ztop = zb + h;
+    const int n = static_cast<int>(poly.size());
+    // Top: area and centroid of the polygon
+    double A = 0;
+    Vec2 c = Vec2::Zero();
+    for (int k = 0; k < n; ++k)
+    {
+        const Vec2& p = poly[k];
+        const Vec2& q = poly[(k + 1) % n];
+        const double cr = p.x()*q.y() - q.x()*p.y();
+        A += 0.5*cr;
+        c += cr*(p + q)/6;
+    }
+    c /= A;
+    const Vec3 wt(w.x(), w.y(), 0);
+    const Vec3 Fs = -ws.rhoAir*ws.skinCoefficient*A*wt.norm()*wt;
+    F += Fs;
+    M += (Vec3(c.x(), c.y(), ztop) - G).cross(Fs);
+    // Sides above z = 0
+    for (int k = 0; k < n; ++k)
+    {
+        const Vec2& p = poly[k];
+        const Vec2& q = poly[(k + 1) % n];
+        const Vec2 e = q - p;
+        const Vec3 nrm = Vec3(e.y(), -e.x(), 0).normalized();
+        const double wn = w.dot(nrm);
+        if (wn <= 0) continue;
+        const double area = e.norm()*ztop;
+        const Vec3 Ff = -0.5*ws.rhoAir*ws.formCoefficient*area*wn*wn*nrm;
+        const Vec2 mid = 0.5*(p + q);
+        F += Ff;
+        M += (Vec3(mid.x(), mid.y(), 0.5*ztop) - G).cross(Ff);
+    }
+}
+
+} // anonymous namespace
+
+
+TEST(Wind, forceAndMomentAreTheSumOfFacetForces)
+{
+    WindSettings ws;
+    ws.skinCoefficient = 2e-3;
+    ws.formCoefficient = 0.8;
+
+    // A symmetric square floe along a side and along a diagonal: no yaw.
+    // An asymmetric (trapezoidal) floe at an oblique wind: a yaw moment,
+    // equal to the facet sum.
+    const double h = 1, zb = -0.9;
+    const std::vector<std::vector<Vec2>> polys =
+    {
+        {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}},
+        {{-3, -1}, {2, -2}, {1.5, 2.5}, {-2.5, 1.5}}
+    };
+    const std::vector<Vec3> winds =
+        {Vec3(12, 0, 0), Vec3(8, 8, 0), Vec3(-5, 9, 0)};
+
+    for (std::size_t p = 0; p < polys.size(); ++p)
+    {
+        for (const Vec3& Ua : winds)
+        {
+            for (int sub : {0, 2})
+            {
+                ws.subdivision = sub;
+                // No dilation: the core is the outer polyhedron
+                WindWorld ww(1e-3, Vec3::Zero());
+                const int shape = ww.world->addShape
+                (
+                    DilatedShape
+                    (
+                        ConvexPolyhedron::prism(polys[p], zb, h), 1e-12
+                    )
+                );
+                ww.world->addBody(shape, ww.ice, Vec3::Zero(), Quat::Identity());
+                const Body& b = ww.body(0);
+                const Wind wind(WaterSettings{rhoWater, 0}, ws, WindHistory(Ua));
+                Vec3 F, M;
+                wind.bodyWind(*ww.world, 0, Ua, F, M);
+
+                // The input frame sits at the origin: the world polygon is
+                // the input polygon, G the body's centroid
+                Vec3 Fe, Me;
+                facetSum(polys[p], zb, h, b.x, -Ua, ws, Fe, Me);
+
+                SCOPED_TRACE("polygon " + std::to_string(p) + ", subdivision "
+                    + std::to_string(sub));
+                // The outer polyhedron is the prism offset by the dilation
+                // radius 1e-12 m: relative differences of order 1e-11 on
+                // the 0.1 m freeboard
+                EXPECT_NEAR((F - Fe).norm(), 0, 1e-10*Fe.norm());
+                EXPECT_NEAR((M - Me).norm(), 0, 1e-10*Me.norm());
+                if (p == 0)
+                {
+                    // Symmetric: no yaw to round-off
+                    EXPECT_NEAR(M.z(), 0, 1e-12*Me.norm());
+                }
+                else
+                {
+                    EXPECT_GT(std::abs(M.z()), 1e-3*Me.norm());
+                }
+            }
+        }
+    }
+
+    // Nothing above water: no wind
+    WindWorld sunk(1e-3, Vec3::Zero());
+    sunk.addBox(4, 4, 1, -1.2);
+    const Wind wind(WaterSettings{rhoWater, 0}, WindSettings(), WindHistory());
+    Vec3 F, M;
+    wind.bodyWind(*sunk.world, 0, Vec3(10, 0, 0), F, M);
+    EXPECT_EQ(F.norm(), 0.0);
+}
+
+
+TEST(Wind, freeDriftSingleFloe)
+{
+    const SingleThread oneThread;
+    const double L = 10, h = 1;
+    const double d = rhoIce/rhoWater*h;
+    const double Ua = 15;
+    const WindSettings ws;
+
+    for (bool diagonal : {false, true})
+    {
+        const Vec3 dir =
+            diagonal ? Vec3(1, 1, 0).normalized() : Vec3(1, 0, 0);
+        WindWorld ww(0.02);
+        ww.addBox(L, L, h, -d);
+        ww.addWater(ws, WindHistory(Ua*dir));
+
+        const double u = freeDriftSpeed
+        (
+            L, h, Ua, diagonal ? std::sqrt(2.0) : 1.0, ws, DragSettings()
+        );
+        ww.world->advanceTo(600);
+        const Vec3 v = ww.body(0).v;
+        const double along = v.dot(dir);
+        const double across = (v - along*dir).head<2>().norm();
+        const double err = std::abs(along/u - 1);
+        std::cout << "free drift (" << (diagonal ? "diagonal" : "side")
+                  << "): U_a " << Ua << " m/s, analytic u = " << u
+                  << " m/s (" << 100*u/Ua << " % of the wind), simulated "
+                  << along << " m/s, relative error " << err
+                  << ", across " << across << " m/s, spin "
+                  << ww.body(0).omega().z() << " rad/s" << std::endl;
+        EXPECT_LT(err, 0.02);
+        EXPECT_LT(across, 1e-6*u);
+        EXPECT_LT(std::abs(ww.body(0).omega().z()), 1e-9);
+    }
+}
+
+
+TEST(Wind, freeDriftSparseField)
+{
+    const SingleThread oneThread;
+    const double Ua = 15;
+    const Vec3 dir(1, 0, 0);
+    const WindSettings ws;
+    const std::vector<std::pair<double, double>> sizes =
+        {{4, 0.6}, {6, 0.8}, {8, 1.2}, {12, 1.5}, {5, 1.0}};
+
+    WindWorld ww(0.02);
+    for (std::size_t k = 0; k < sizes.size(); ++k)
+    {
+        const double L = sizes[k].first, h = sizes[k].second;
+        ww.addBox(L, L, h, -rhoIce/rhoWater*h, Vec3(0, 40.0*k, 0));
+    }
+    ww.addWater(ws, WindHistory(Ua*dir));
+    int contacts = 0;
+    while (ww.world->time() < 600 - 1e-9)
+    {
+        ww.world->advanceTo(ww.world->time() + 10);
+        contacts = std::max(contacts, ww.world->contactCount());
+    }
+    EXPECT_EQ(contacts, 0);
+    double worst = 0;
+    for (std::size_t k = 0; k < sizes.size(); ++k)
+    {
+        const double u = freeDriftSpeed
+        (
+            sizes[k].first, sizes[k].second, Ua, 1.0, ws, DragSettings()
+        );
+        const Vec3 v = ww.body(k).v;
+        const double err = std::abs(v.x()/u - 1);
+        worst = std::max(worst, err);
+        std::cout << "field floe " << k << " (" << sizes[k].first << " m, "
+                  << sizes[k].second << " m): analytic " << u
+                  << " m/s, simulated " << v.x() << " m/s, error " << err
+                  << std::endl;
+        EXPECT_LT(err, 0.02);
+        EXPECT_LT(std::abs(v.y()), 1e-6*u);
+    }
+    std::cout << "sparse field: largest relative error " << worst << std::endl;
+}
+
+
+namespace
+{
+
+//- A field of polygonal floes at about their draft, moving and colliding,
+//  with buoyancy, drag, a turning wind and floe damping
+std::unique_ptr<World> windField(int n, unsigned seed)
+{
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    auto w = std::make_unique<World>(s);
+    const int mat = w->addMaterial(test::ice(1e9));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    std::mt19937_64 rng(seed);
+    auto uni = [&](double a, double b)
+    {
+        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
+    };
+    const int side = int(std::ceil(std::sqrt(double(n))));
+    const double pitch = 3.0;
+    for (int k = 0; k < n; ++k)
+    {
+        std::vector<Vec2> poly;
+        const int m = 5 + int(rng() % 3);
+        const double phase = uni(0, 2*M_PI);
+        for (int j = 0; j < m; ++j)
+        {
+            const double a = phase + 2*M_PI*j/m;
+            const double rad = uni(1.0, 1.3);
+            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
+        }
+        const int shape = w->addShape
+        (
+            DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1)
+        );
+        const Vec3 x((k % side)*pitch, (k/side)*pitch, uni(-0.45, -0.3));
+        w->addBody
+        (
+            shape, mat, x,
+            Quat(Eigen::AngleAxisd(uni(-0.05, 0.05), Vec3::UnitX())),
+            Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5))
+        );
+    }
+    const WaterSettings water{1025, 0};
+    w->addForceModel(std::make_shared<Buoyancy>(water));
+    w->addForceModel
+    (
+        std::make_shared<Drag>
+        (
+            water, DragSettings(),
+            std::make_shared<UniformCurrent>(Vec3(0.2, 0.1, 0))
+        )
+    );
+    w->addForceModel
+    (
+        std::make_shared<Wind>
+        (
+            water, WindSettings(),
+            WindHistory({{0, Vec3(15, 0, 0)}, {0.5, Vec3(0, 20, 0)}})
+        )
+    );
+    w->addForceModel
+    (
+        std::make_shared<FloeDamping>(water, FloeDampingSettings())
+    );
+    return w;
+}
+
+void expectSameState(const World& a, const World& b)
+{
+    ASSERT_EQ(a.bodies().size(), b.bodies().size());
+    for (std::size_t i = 0; i < a.bodies().size(); ++i)
+    {
+        const Body& p = a.bodies()[i];
+        const Body& q = b.bodies()[i];
+        EXPECT_EQ(p.x, q.x) << "body " << i;
+        EXPECT_EQ(p.v, q.v) << "body " << i;
+        EXPECT_EQ(p.L, q.L) << "body " << i;
+        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
+    }
+}
+
+} // anonymous namespace
+
+
+TEST(Wind, independentOfThreadCount)
+{
+    // 1200 floes: the body-force models run on the threads' chunks
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    auto a = windField(1200, 5);
+    a->advanceTo(0.1);
+    omp_set_num_threads(std::max(2, threads));
+    auto b = windField(1200, 5);
+    b->advanceTo(0.1);
+    omp_set_num_threads(threads);
+    EXPECT_GT(a->contactPairCount() + a->contactCount(), 0);
+    expectSameState(*a, *b);
+}
+
+
+TEST(Wind, restartEqualsUninterruptedRun)
+{
+    // The wind turns over the run (table): a restart must pick it up at
+    // the restart time. As in the solvers, both runs stop at the write time
+    // (advanceTo snaps the time to it), the restarted one starts there.
+    const double cut = 0.3;
+    auto a = windField(100, 11);
+    a->advanceTo(cut);
+    a->advanceTo(0.8);
+
+    auto b = windField(100, 11);
+    b->advanceTo(cut);
+    auto c = windField(100, 11);
+    for (std::size_t i = 0; i < b->bodies().size(); ++i)
+    {
+        Body& t = c->bodies()[i];
+        const Body& f = b->bodies()[i];
+        t.x = f.x; t.q = f.q; t.v = f.v; t.L = f.L;
+        t.force = f.force; t.torque = f.torque;
+    }
+    c->setContactRecords(b->contactRecords());
+    c->setTime(b->time());
+    c->initialise(true);
+    c->advanceTo(0.8);
+    EXPECT_GT(b->contactCount(), 0);
+    expectSameState(*a, *c);
+}
