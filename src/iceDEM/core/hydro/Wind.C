@@ -70,7 +70,8 @@ Vec3 WindHistory::at(double t) const
     const double t0 = table_[k - 1].first;
     const double t1 = table_[k].first;
     const double s = (t - t0)/(t1 - t0);
-    return (1 - s)*table_[k - 1].second + s*table_[k].second;
+    // u0 + s (u1 - u0): a constant stretch gives u0 exactly
+    return table_[k - 1].second + s*(table_[k].second - table_[k - 1].second);
 }
 
 
@@ -201,6 +202,20 @@ bool emergedFace
     out.area = area;
     out.centroid = first/area;
     return true;
+}
+
+
+Vec3 bluffWindForce
+(
+    double rhoAir,
+    double Cd,
+    double area,
+    const Vec3& Ua,
+    const Vec3& v
+)
+{
+    const Vec3 w(Ua.x() - v.x(), Ua.y() - v.y(), 0);
+    return (0.5*rhoAir*Cd*area*w.norm())*w;
 }
 
 

@@ -410,6 +410,7 @@ Foam::iceDEMCase::iceDEMCase
             "parallelEdgeSin", "massModel", "neighbourSkin", "featureSkin",
             "contactCheckVelocity", "contactStepsWarn", "contactStepsMin",
             "materials", "interactions", "walls", "water", "drag", "output",
+            "wind", "floeDamping",
             "structure", "coupling"
         },
         "constant/iceDEMProperties"

@@ -4,8 +4,10 @@
 
 Description
     Water (buoyancy) and drag of constant/iceDEMProperties: the water
-    sub-dictionary adds the core's Buoyancy model, the drag sub-dictionary
-    the core's Drag model with a uniform current (type empirical) or with the
+    sub-dictionary adds the core's Buoyancy model and, unless switched off,
+    its FloeDamping (floeDamping: heave, roll and pitch, on by default), the
+    wind sub-dictionary the core's Wind model, the drag sub-dictionary the
+    core's Drag model with a uniform current (type empirical) or with the
     flow velocity made by the solver's factory (type resolved).
 \*---------------------------------------------------------------------------*/
 
@@ -15,8 +17,99 @@ Description
 #include "hydro/Buoyancy.H"
 #include "hydro/Drag.H"
 #include "hydro/FlowVelocity.H"
+#include "hydro/FloeDamping.H"
+#include "hydro/Wind.H"
+#include "windDict.H"
 
 using namespace Foam::iceDEMChecks;
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam;
+
+//- floeDamping: on by default wherever there is water
+void addFloeDamping
+(
+    const dictionary& props,
+    ::iceDEM::World& world,
+    const ::iceDEM::WaterSettings& water
+)
+{
+    ::iceDEM::FloeDampingSettings s;
+    const dictionary* dptr = props.findDict("floeDamping", keyType::LITERAL);
+    if (dptr)
+    {
+        const dictionary& d = *dptr;
+        checkKeywords(d, {"heave", "rollPitch"}, "floeDamping");
+        s.heave = nonNegative(d, "heave", s.heave);
+        s.rollPitch = nonNegative(d, "rollPitch", s.rollPitch);
+        coreCall(d, "floeDamping", [&]{ ::iceDEM::checkFloeDampingSettings(s); });
+    }
+    if (s.heave == 0 && s.rollPitch == 0)
+    {
+        Info<< "iceDEM: floe damping off" << endl;
+        return;
+    }
+    Info<< "iceDEM: floe damping, fraction of critical: heave " << s.heave
+        << ", roll and pitch " << s.rollPitch << endl;
+    world.addForceModel(std::make_shared<::iceDEM::FloeDamping>(water, s));
+}
+
+
+//- wind: optional
+void addWind
+(
+    const dictionary& props,
+    ::iceDEM::World& world,
+    const ::iceDEM::WaterSettings& water
+)
+{
+    const dictionary* dptr = props.findDict("wind", keyType::LITERAL);
+    if (!dptr) return;
+    const dictionary& d = *dptr;
+    checkKeywords
+    (
+        d,
+        {
+            ICEDEM_WIND_HISTORY_KEYWORDS,
+            "rhoAir", "Cs", "Cf", "subdivision", "topCosine"
+        },
+        "wind"
+    );
+    const ::iceDEM::WindHistory history = readWindHistory(d);
+    ::iceDEM::WindSettings s;
+    s.rhoAir = nonNegative(d, "rhoAir", s.rhoAir);
+    s.skinCoefficient = nonNegative(d, "Cs", s.skinCoefficient);
+    s.formCoefficient = nonNegative(d, "Cf", s.formCoefficient);
+    s.subdivision = labelInRange
+    (
+        d, "subdivision", 0, ::iceDEM::DragSettings::maxSubdivision,
+        s.subdivision
+    );
+    s.topCosine = d.getOrDefault<scalar>("topCosine", s.topCosine);
+    if (!std::isfinite(s.topCosine) || !(s.topCosine > 0 && s.topCosine <= 1))
+    {
+        FatalIOErrorInFunction(d)
+            << "Entry 'topCosine' is " << s.topCosine
+            << ": it must lie in (0, 1]" << nl << exit(FatalIOError);
+    }
+    world.addForceModel
+    (
+        coreCall
+        (
+            d, "wind",
+            [&]{ return std::make_shared<::iceDEM::Wind>(water, s, history); }
+        )
+    );
+    Info<< "iceDEM: wind on the floes, " << history.table().size()
+        << " row(s), rhoAir " << s.rhoAir << ", Cs " << s.skinCoefficient
+        << ", Cf " << s.formCoefficient << endl;
+}
+
+} // anonymous namespace
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
 
@@ -27,6 +120,17 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
 
     if (!hasWater)
     {
+        for (const word key : {"wind", "floeDamping"})
+        {
+            if (properties_.found(key, keyType::LITERAL))
+            {
+                FatalIOErrorInFunction(properties_)
+                    << "Entry '" << key << "' needs the sub-dictionary"
+                    << " 'water' (density, level) in"
+                    << " constant/iceDEMProperties" << nl
+                    << exit(FatalIOError);
+            }
+        }
         if (hasDrag)
         {
             FatalIOErrorInFunction(properties_.subDict("drag"))
@@ -47,6 +151,9 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
     coreCall(wd, "water", [&]{ ::iceDEM::checkWaterSettings(water); });
     world_->addForceModel(std::make_shared<::iceDEM::Buoyancy>(water));
     water_ = true;
+
+    addFloeDamping(properties_, *world_, water);
+    addWind(properties_, *world_, water);
 
     if (!hasDrag)
     {
