@@ -568,3 +568,19 @@ TEST(Wind, restartEqualsUninterruptedRun)
     EXPECT_GT(b->contactCount(), 0);
     expectSameState(*a, *c);
 }
+
+
+TEST(Wind, bluffBodyForceOfTheHull)
+{
+    // F = 1/2 rho_a C_d A |w| w, w the horizontal part of U_a - v
+    const Vec3 Ua(12, -5, 3);       // a vertical component is ignored
+    const Vec3 v(0.5, 0.2, -0.1);
+    const double rho = 1.3, Cd = 0.9, A = 2500;
+    const Vec3 F = bluffWindForce(rho, Cd, A, Ua, v);
+    const Vec3 w(11.5, -5.2, 0);
+    const Vec3 expected = 0.5*rho*Cd*A*w.norm()*w;
+    EXPECT_NEAR((F - expected).norm(), 0, 1e-12*expected.norm());
+    EXPECT_EQ(F.z(), 0.0);
+    // Moving with the wind: no force
+    EXPECT_EQ(bluffWindForce(rho, Cd, A, Ua, Vec3(12, -5, 0)).norm(), 0.0);
+}
