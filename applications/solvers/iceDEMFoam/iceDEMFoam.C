@@ -23,6 +23,8 @@ Description
 
     Outputs under postProcessing/iceDEM/<startTime>/ (see iceDEMOutput.H and
     doc/caseFiles.md): bodies.dat, energy.dat, VTK/ with bodies.vtk.series.
+    Function objects of system/controlDict run after every time step (e.g.
+    iceLoadStatistics: load statistics and the force balance).
 
     If the state of a body becomes non-finite the run stops naming the body
     and the time.
@@ -75,7 +77,6 @@ int main(int argc, char *argv[])
         " every written time directory (restart with startFrom latestTime)."
     );
     argList::noParallel();
-    argList::noFunctionObjects(true);
     argList::addOption
     (
         "threads",

@@ -1071,6 +1071,28 @@ ContactLoad World::contactLoad(int b) const
 }
 
 
+void World::wallContactForces(std::vector<Vec3>& f) const
+{
+    f.assign(walls_.size(), Vec3::Zero());
+    if (!nlist_) return;
+    for (const ContactPair& p : nlist_->pairs())
+    {
+        if (p.isWall()) f[p.wall()] += p.forceOnJ;
+    }
+}
+
+
+Vec3 World::modelForceOnFreeBodies() const
+{
+    Vec3 f = Vec3::Zero();
+    for (std::size_t b = 0; b < modelForce_.size(); ++b)
+    {
+        if (bodies_[b].isFree()) f += modelForce_[b];
+    }
+    return f;
+}
+
+
 int World::contactPairCount() const
 {
     int n = 0;

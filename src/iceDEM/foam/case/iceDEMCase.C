@@ -635,6 +635,27 @@ void Foam::iceDEMCase::start()
 }
 
 
+void Foam::iceDEMCase::addStepObserver
+(
+    const std::shared_ptr<stepObserver>& o
+) const
+{
+    observers_.push_back(o);
+}
+
+
+void Foam::iceDEMCase::stepDone(scalar h) const
+{
+    for (const auto& w : observers_)
+    {
+        if (const auto o = w.lock())
+        {
+            o->demStep(*this, h);
+        }
+    }
+}
+
+
 void Foam::iceDEMCase::advanceTo(scalar t)
 {
     ::iceDEM::World& w = *world_;
@@ -653,7 +674,8 @@ void Foam::iceDEMCase::advanceTo(scalar t)
     {
         while (t - w.time() > tol)
         {
-            const scalar remaining = t - w.time();
+            const scalar tPrev = w.time();
+            const scalar remaining = t - tPrev;
             const bool last = remaining < dt + tol;
 
             if (move)
@@ -674,6 +696,7 @@ void Foam::iceDEMCase::advanceTo(scalar t)
             {
                 w.advanceTo(t);
             }
+            stepDone((last ? t : w.time()) - tPrev);
         }
         w.setTime(t);
         w.checkFinite();

@@ -772,6 +772,7 @@ void Foam::iceDEMCoupling::solve()
             ++steps;
 
             const scalar h = (last ? t1 : w.time()) - tPrev;
+            case_->stepDone(h);
 
             ::iceDEM::Vec3 F = ::iceDEM::Vec3::Zero();
             ::iceDEM::Vec3 M = ::iceDEM::Vec3::Zero();

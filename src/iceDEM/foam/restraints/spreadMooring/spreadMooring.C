@@ -10,6 +10,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "spreadMooring.H"
+#include "IOField.H"
 #include "addToRunTimeSelectionTable.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "mathematicalConstants.H"
@@ -314,6 +315,33 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
         const vector F = -T[i]*r/(mag(r) + VSMALL);
         restraintForce += F;
         restraintMoment += (f - CofR) ^ F;
+    }
+
+    // The tensions on the Time database for function objects
+    // (iceLoadStatistics): an unwritten scalar field '<restraint>:tensions'
+    {
+        const word key(name_ + ":tensions");
+        if (runTime.foundObject<IOField<scalar>>(key))
+        {
+            runTime.lookupObjectRef<IOField<scalar>>(key) = T;
+        }
+        else
+        {
+            IOField<scalar>* reg = new IOField<scalar>
+            (
+                IOobject
+                (
+                    key,
+                    runTime.timeName(),
+                    runTime,
+                    IOobject::NO_READ,
+                    IOobject::NO_WRITE,
+                    true
+                ),
+                T
+            );
+            reg->store();
+        }
     }
 
     // Output: one row per time step, the last evaluation of the step
