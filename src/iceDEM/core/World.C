@@ -161,6 +161,17 @@ void World::addForceModel(const std::shared_ptr<BodyForceModel>& m)
 }
 
 
+void World::setDomain(const DomainSettings& s)
+{
+    if (initialised_)
+    {
+        throw Error("the domain can only be set before the run starts", "domain");
+    }
+    domain_ = std::make_unique<Domain>(s);
+    if (!domain_->active()) domain_.reset();
+}
+
+
 void World::prepareModels()
 {
     // Only a world with models needs the sums (memory per floe, issue 7)
@@ -274,6 +285,19 @@ void World::initialise(bool restart)
 
     prepareModels();
 
+    // Periodic domain: free bodies into the periodic bounds (a no-op on a
+    // restart, whose state was wrapped), then its checks
+    wrapped_.clear();
+    if (domain_)
+    {
+        for (Body& b : bodies_)
+        {
+            if (b.isFree()) domain_->wrap(b.x);
+        }
+        domain_->check(*this, skin);
+        wrapped_.assign(bodies_.size(), Domain::noImage);
+    }
+
     vertexOffset_.clear();
     updateWorldVertices();
     nlist_ = std::make_unique<NeighbourList>(skin);
@@ -284,7 +308,8 @@ void World::initialise(bool restart)
     {
         if (p.isWall()) continue;
         const BodyView A{&shapeOf(p.i), worldVertices(p.i), bodies_[p.i].rotation(), bodies_[p.i].x};
-        const BodyView B{&shapeOf(p.j), worldVertices(p.j), bodies_[p.j].rotation(), bodies_[p.j].x};
+        Vec3 translated[maxShapeVertices];
+        const BodyView B = viewOfJ(p, translated);
         if (coresIntersect(A, B))
         {
             std::ostringstream msg;
@@ -308,6 +333,22 @@ void World::initialise(bool restart)
                 pairs.begin(), pairs.end(),
                 [&](const ContactPair& p) { return p.i == rec.i && p.j == rec.j; }
             );
+            // Periodic domain: a record names no image; the pair is the one
+            // whose image of j is nearest to i (the only one in reach when
+            // the domain passed its checks)
+            if (domain_ && it != pairs.end() && !it->isWall())
+            {
+                double best = (centroidOfJ(*it) - bodies_[it->i].x).squaredNorm();
+                for (auto jt = it + 1; jt != pairs.end() && jt->i == rec.i && jt->j == rec.j; ++jt)
+                {
+                    const double d = (centroidOfJ(*jt) - bodies_[jt->i].x).squaredNorm();
+                    if (d < best)
+                    {
+                        best = d;
+                        it = jt;
+                    }
+                }
+            }
             if (it == pairs.end() || it->nContacts >= maxContactsPerPair)
             {
                 throw Error("a saved contact does not match the bodies' positions", "contacts");

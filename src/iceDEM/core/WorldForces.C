@@ -118,12 +118,35 @@ int World::findPairContacts
         const Wall& w = walls_[p.wall()];
         return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair, separation);
     }
-    const Body& bj = bodies_[p.j];
-    const BodyView B{&shapeOf(p.j), worldVertices(p.j), bj.rotation(), bj.x, bj.q};
+    Vec3 translated[maxShapeVertices];
+    const BodyView B = viewOfJ(p, translated);
     NarrowPhaseSettings nps;
     nps.parallelEdgeSin = settings_.parallelEdgeSin;
     nps.featureSkin = featureSkin_;
     return findContacts(A, B, nps, axis, found, maxContactsPerPair, features, separation);
+}
+
+
+BodyView World::viewOfJ(const ContactPair& p, Vec3* buffer) const
+{
+    const Body& bj = bodies_[p.j];
+    if (p.image == Domain::noImage)
+    {
+        return BodyView{&shapeOf(p.j), worldVertices(p.j), bj.rotation(), bj.x, bj.q};
+    }
+    // A ghost: j's world vertices and centroid translated by the image
+    const Vec3 s = domain_->shift(p.image);
+    const Vec3* w = worldVertices(p.j);
+    const int n = static_cast<int>(shapeOf(p.j).core().vertices().size());
+    for (int k = 0; k < n; ++k) buffer[k] = w[k] + s;
+    return BodyView{&shapeOf(p.j), buffer, bj.rotation(), bj.x + s, bj.q};
+}
+
+
+Vec3 World::centroidOfJ(const ContactPair& p) const
+{
+    const Vec3& x = bodies_[p.j].x;
+    return p.image == Domain::noImage ? x : Vec3(x + domain_->shift(p.image));
 }
 
 
@@ -148,7 +171,7 @@ ContactResult World::contactForce
 
     const Vec3& x = g.point;
     Vec3 vRel = -(bi.v + omegas_[p.i].cross(x - bi.x));
-    if (bj) vRel += bj->v + omegas_[p.j].cross(x - bj->x);
+    if (bj) vRel += bj->v + omegas_[p.j].cross(x - centroidOfJ(p));
 
     return law_->evaluate(coeffs, g, mEff, vRel, xi, dtTangential);
 }
@@ -287,7 +310,7 @@ void World::pairForces(double dtTangential)
                 const Vec3& x = fc.g.point;
                 p.forceOnJ += r.forceOnJ;
                 p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ);
-                if (!p.isWall()) p.torqueOnJ += (x - bodies_[p.j].x).cross(r.forceOnJ);
+                if (!p.isWall()) p.torqueOnJ += (x - centroidOfJ(p)).cross(r.forceOnJ);
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }

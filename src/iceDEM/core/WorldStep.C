@@ -33,6 +33,7 @@ void World::stepBy(double dt)
     const bool oneRegion = forceModels_.empty();
     const bool listCoversBodies = nlist_->coversBodies(bodies_.size());
     bool rebuild = !listCoversBodies;
+    const bool periodic = domain_ != nullptr;
 
     // One team for the first half step, the world frames, the neighbour
     // list and the contacts (fewer fork-joins and barriers: on a loaded
@@ -56,6 +57,18 @@ void World::stepBy(double dt)
             {
                 rebuild = true;
             }
+            // Migration: a free body leaving through a periodic side
+            // re-enters at the other (after track: its motion bound is
+            // that of the unwrapped path); the list is rebuilt
+            if (periodic && b.isFree())
+            {
+                const int w = domain_->wrap(b.x);
+                if (w != Domain::noImage)
+                {
+                    wrapped_[i] = w;
+                    rebuild = true;
+                }
+            }
         }
 
         if (rebuild)
@@ -63,6 +76,7 @@ void World::stepBy(double dt)
             #pragma omp single
             {
                 nlist_->build(*this);
+                if (periodic) std::fill(wrapped_.begin(), wrapped_.end(), int(Domain::noImage));
                 preparePairs();
             }
         }

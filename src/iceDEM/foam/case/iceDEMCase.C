@@ -410,7 +410,7 @@ Foam::iceDEMCase::iceDEMCase
             "parallelEdgeSin", "massModel", "neighbourSkin", "featureSkin",
             "contactCheckVelocity", "contactStepsWarn", "contactStepsMin",
             "materials", "interactions", "walls", "water", "drag", "output",
-            "structure", "coupling"
+            "structure", "coupling", "domain"
         },
         "constant/iceDEMProperties"
     );
@@ -461,6 +461,7 @@ Foam::iceDEMCase::iceDEMCase
     readBodies();
     readInteractions();
     readWater(resolvedFlow);
+    readDomain();
 
     Info<< "iceDEM: " << bodyNames_.size() << " bodies, "
         << wallNames_.size() << " walls, " << materialIndex_.size()
