@@ -8,6 +8,7 @@
 
 #include "testWorlds.H"
 #include "contact/NeighbourList.H"
+#include "field/VoronoiField.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -419,4 +420,51 @@ TEST(periodic, badSizesStructureAndWallsAreErrors)
         w->addWall(wall);
         EXPECT_EQ(entryOf(*w), "domain");
     }
+}
+
+
+TEST(periodic, voronoiFieldFillsThePeriodicDomain)
+{
+    // createIceField's region equal to the periodic bounds: the floes of
+    // the cells cut by the region's sides end straight at the sides, so no
+    // floe straddles a side, and the gaps across a side are the spreading
+    // gaps of the tessellation: the DEM starts (no overlap or contact,
+    // also through the sides) and pairs across the sides exist
+    VoronoiFieldSettings s;
+    s.xmin = 0; s.xmax = 300; s.ymin = 0; s.ymax = 200;
+    s.concentration = 0.9;
+    s.meanFloeArea = 100;
+    s.radius = 0.1;
+    s.thickness.value = 1.0;
+    s.seed = 4;
+    VoronoiFieldReport rep;
+    const std::vector<Floe> floes = generateVoronoiField(s, rep);
+    EXPECT_NEAR(rep.concentration, 0.9, 1e-3);
+
+    World w(noGravity());
+    const int mat = w.addMaterial(ice());
+    double xLo = 1e9, xHi = -1e9;
+    for (const Floe& f : floes)
+    {
+        const int shape = w.addShape(DilatedShape(f.core(), f.radius));
+        w.addBody(shape, mat, Vec3::Zero());
+        for (const Vec2& p : f.outline)
+        {
+            xLo = std::min(xLo, p.x());
+            xHi = std::max(xHi, p.x());
+        }
+    }
+    w.setDomain(periodicBox(0, 300, 0, 200));
+    EXPECT_NO_THROW(w.initialise());
+    int acrossPairs = 0;
+    for (const ContactPair& p : w.neighbourList().pairs())
+    {
+        acrossPairs += p.image != Domain::noImage;
+    }
+    EXPECT_GT(acrossPairs, 20);
+    // The field reaches the sides (within a floe's size)
+    EXPECT_LT(xLo, 10);
+    EXPECT_GT(xHi, 290);
+    EXPECT_GE(xLo, 0);
+    EXPECT_LE(xHi, 300);
 }
