@@ -468,3 +468,132 @@ TEST(periodic, voronoiFieldFillsThePeriodicDomain)
     EXPECT_GE(xLo, 0);
     EXPECT_LE(xHi, 300);
 }
+
+
+namespace
+{
+
+//- A cluster of colliding floes (no walls, no domain) and, optionally, an
+//  idle floe far away (last index)
+std::unique_ptr<World> clusterWithFarFloe(bool far)
+{
+    auto w = makePeriodicField(100, 9);
+    // the same floes without periodic sides: rebuild from its bodies
+    auto v = std::make_unique<World>(noGravity());
+    const int mat = v->addMaterial(ice(1e9));
+    v->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    for (const DilatedShape& s : w->shapes()) v->addShape(s);
+    for (const Body& b : w->bodies())
+    {
+        const int i = v->addBody(b.shape, mat, Vec3::Zero());
+        Body& t = v->bodies()[i];
+        t.x = b.x; t.q = b.q; t.v = b.v; t.L = b.L;
+    }
+    if (far)
+    {
+        v->addBody(0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0));
+    }
+    return v;
+}
+
+} // anonymous namespace
+
+
+TEST(bodiesInRun, removingAnIdleBodyLeavesTheOthersExact)
+{
+    // The far floe never touches the cluster: removing it during the run
+    // must leave every other floe's trajectory bit for bit that of a run
+    // without it (indices keep their order, so do the force sums)
+    auto a = clusterWithFarFloe(false);
+    auto b = clusterWithFarFloe(true);
+    a->advanceTo(1.0);
+    b->advanceTo(0.5);
+    EXPECT_GT(b->contactCount(), 0);
+    std::vector<bool> remove(b->bodies().size(), false);
+    remove.back() = true;
+    b->removeBodiesInRun(remove);
+    EXPECT_EQ(b->bodies().size(), a->bodies().size());
+    b->advanceTo(1.0);
+    expectSameState(*a, *b);
+}
+
+
+TEST(bodiesInRun, insertingAnIdleBodyLeavesTheOthersExact)
+{
+    auto a = clusterWithFarFloe(false);
+    auto b = clusterWithFarFloe(false);
+    a->advanceTo(1.0);
+    b->advanceTo(0.5);
+    const int n = static_cast<int>(b->bodies().size());
+    const int i = b->insertBodyInRun(0, 0, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0));
+    EXPECT_EQ(i, n);
+    const double x0 = b->bodies()[n].x.x();
+    b->advanceTo(1.0);
+    ASSERT_EQ(int(b->bodies().size()), n + 1);
+    std::vector<bool> remove(n + 1, false);
+    remove.back() = true;
+    // the inserted floe drifted freely: 0.1 m/s for 0.5 s
+    // (500 steps of x += dt v at 500 m: half an ulp of 512 m each)
+    EXPECT_NEAR(b->bodies()[n].x.x() - x0, 0.05, 500*0.5*std::numeric_limits<double>::epsilon()*512);
+    b->removeBodiesInRun(remove);
+    expectSameState(*a, *b);
+}
+
+
+TEST(bodiesInRun, removingATouchingBodyKeepsTheOtherHistories)
+{
+    auto w = clusterWithFarFloe(false);
+    w->advanceTo(0.3);
+    while (w->contactPairCount() < 3) w->step();
+    const std::vector<ContactRecord> before = w->contactRecords();
+    const int gone = before.front().i;
+    std::vector<bool> remove(w->bodies().size(), false);
+    remove[gone] = true;
+    const Vec3 P0 = [&]{ Vec3 P = Vec3::Zero(); for (const Body& b : w->bodies()) P += b.mass*b.v; return P; }();
+    const Vec3 Pgone = w->bodies()[gone].mass*w->bodies()[gone].v;
+    w->removeBodiesInRun(remove);
+    // Every other contact kept, with its spring, under the new indices
+    std::vector<ContactRecord> expected;
+    for (ContactRecord r : before)
+    {
+        if (r.i == gone || r.j == gone) continue;
+        if (r.i > gone) --r.i;
+        if (r.j > gone) --r.j;
+        expected.push_back(r);
+    }
+    const std::vector<ContactRecord> after = w->contactRecords();
+    ASSERT_EQ(after.size(), expected.size());
+    for (std::size_t k = 0; k < after.size(); ++k)
+    {
+        EXPECT_EQ(after[k].i, expected[k].i);
+        EXPECT_EQ(after[k].j, expected[k].j);
+        EXPECT_EQ(after[k].featureI, expected[k].featureI);
+        EXPECT_EQ(after[k].featureJ, expected[k].featureJ);
+        EXPECT_EQ(after[k].xi, expected[k].xi);
+    }
+    // The rest runs on, and its momentum is that of the kept floes
+    const Vec3 P1 = [&]{ Vec3 P = Vec3::Zero(); for (const Body& b : w->bodies()) P += b.mass*b.v; return P; }();
+    EXPECT_LT((P1 - (P0 - Pgone)).norm(), 1e-12*P0.norm() + 1e-9);
+    w->advanceTo(0.6);
+    w->checkFinite();
+}
+
+
+TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
+{
+    auto w = clusterWithFarFloe(false);
+    w->advanceTo(0.1);
+    const Vec3 x = w->bodies()[5].x;
+    w->insertBodyInRun(0, 0, x + Vec3(0, 0, 2.0));     // above it: free
+    EXPECT_NO_THROW(w->step());
+    w->insertBodyInRun(0, 0, x + Vec3(0.1, 0, 0));     // on it
+    try
+    {
+        w->step();
+        ADD_FAILURE() << "no error";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), "bodies");
+    }
+}

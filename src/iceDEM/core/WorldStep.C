@@ -23,6 +23,10 @@ void World::stepBy(double dt)
     {
         initialise();
     }
+    if (firstInserted_ >= 0)
+    {
+        joinInserted();
+    }
     resizeBodyFrames();
     ++evaluation_;
     preparePairs();
