@@ -411,7 +411,7 @@ Foam::iceDEMCase::iceDEMCase
             "contactCheckVelocity", "contactStepsWarn", "contactStepsMin",
             "materials", "interactions", "walls", "water", "drag", "output",
             "wind", "floeDamping",
-            "structure", "coupling"
+            "structure", "coupling", "domain"
         },
         "constant/iceDEMProperties"
     );
@@ -462,6 +462,7 @@ Foam::iceDEMCase::iceDEMCase
     readBodies();
     readInteractions();
     readWater(resolvedFlow);
+    readDomain();
 
     Info<< "iceDEM: " << bodyNames_.size() << " bodies, "
         << wallNames_.size() << " walls, " << materialIndex_.size()
