@@ -41,7 +41,7 @@ Foam::completeTimeWriter::completeTimeWriter(Time& runTime)
             << "Could not install the SIGTERM handler" << exit(FatalError);
     }
     Info<< "iceDEM: SIGTERM writes a complete time at the end of the step"
-        << " and stops (exit code 0)" << nl;
+        << " and stops (exit code 0)" << endl;   // flushed: scripts wait for it
 }
 
 
