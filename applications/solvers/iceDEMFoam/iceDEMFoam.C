@@ -57,6 +57,8 @@ Usage
 #include "iceDEMOutput.H"
 #include "IOdictionary.H"
 #include "runWithoutFlow.H"
+#include "completeTime.H"
+#include "completeTimeWriter.H"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -102,7 +104,9 @@ int main(int argc, char *argv[])
         #endif
     }
 
-    #include "createTime.H"
+    // Started from the last complete time (a run killed while writing)
+    autoPtr<Time> runTimePtr(completeTime::createTime(args));
+    Time& runTime = runTimePtr();
 
     #ifdef _OPENMP
     Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;
@@ -142,6 +146,9 @@ int main(int argc, char *argv[])
 
     const ::iceDEM::World& world = demCase.world();
 
+    // Write times marked complete last; SIGTERM: write and stop
+    completeTimeWriter writer(runTime);
+
     Info<< "iceDEM: output in " << output.path() << nl
         << "iceDEM: estimated Hertz contact time "
         << world.estimatedContactTime() << " s, DEM step "
@@ -158,7 +165,7 @@ int main(int argc, char *argv[])
         demCase.advanceTo(runTime.value());
 
         output.write();
-        runTime.write();
+        writer.write();
 
         const ::iceDEM::Energies e = world.energies();
         Info<< "    DEM steps " << (world.stepIndex() - steps0)

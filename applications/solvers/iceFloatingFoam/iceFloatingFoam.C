@@ -73,6 +73,8 @@ Usage
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
 #include "runWithoutFlow.H"
+#include "completeTime.H"
+#include "completeTimeWriter.H"
 
 #include <memory>
 
@@ -120,7 +122,9 @@ int main(int argc, char *argv[])
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
-    #include "createTime.H"
+    // Started from the last complete time (a run killed while writing)
+    autoPtr<Time> runTimePtr(completeTime::createTime(args));
+    Time& runTime = runTimePtr();
 
     if (args.found("noFlow"))
     {
@@ -167,6 +171,9 @@ int main(int argc, char *argv[])
     }
 
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
+
+    // Write times marked complete last; SIGTERM: write and stop
+    completeTimeWriter writer(runTime);
 
     Info<< "\nStarting time loop\n" << endl;
 
@@ -258,7 +265,7 @@ int main(int argc, char *argv[])
             motionLog->write(*hullPtr);
         }
 
-        runTime.write();
+        writer.write();
 
         runTime.printExecutionTime(Info);
     }

@@ -15,6 +15,7 @@
 #include "IOdictionary.H"
 #include "OSspecific.H"
 #include "boundBox.H"
+#include "postProcessingFile.H"
 
 using namespace Foam::iceDEMChecks;
 
@@ -663,7 +664,10 @@ Foam::iceDEMCoupling::iceDEMCoupling
            /runTime.timeName(runTime.startTime().value())
         );
         mkDir(dir);
-        loadFile_.reset(new OFstream(dir/"iceLoad.dat"));
+        loadFile_.reset
+        (
+            new OFstream(newOutputFile(runTime, dir, "iceLoad.dat"))
+        );
         loadFile_().precision
         (
             case_->outputDict().getOrDefault<label>("precision", 12)

@@ -5,6 +5,7 @@
 
 #include "iceDEMOutput.H"
 #include "dictionaryChecks.H"
+#include "postProcessingFile.H"
 
 #include "OSspecific.H"
 #include "Pstream.H"
@@ -121,12 +122,18 @@ Foam::iceDEMOutput::iceDEMOutput(const iceDEMCase& demCase)
     {
         mkDir(dir_);
 
-        bodiesFile_.reset(new OFstream(dir_/"bodies.dat"));
+        bodiesFile_.reset
+        (
+            new OFstream(newOutputFile(demCase.time(), dir_, "bodies.dat"))
+        );
         bodiesFile_().precision(precision_);
         bodiesFile_()
             << "# time id x y z vx vy vz wx wy wz qw qx qy qz" << endl;
 
-        energyFile_.reset(new OFstream(dir_/"energy.dat"));
+        energyFile_.reset
+        (
+            new OFstream(newOutputFile(demCase.time(), dir_, "energy.dat"))
+        );
         energyFile_().precision(precision_);
         energyFile_()
             << "# time kinetic gravitational elastic contacts contactPairs"

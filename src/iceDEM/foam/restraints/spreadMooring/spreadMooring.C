@@ -16,6 +16,7 @@
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
 #include "unitConversion.H"
+#include "postProcessingFile.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -140,6 +141,10 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::open
     if (isFile(file))
     {
         file = dir/("tensions_" + runTime.timeName() + ".dat");
+    }
+    else
+    {
+        warnRowsBeyondStart(runTime, dir, "tensions.dat");
     }
 
     file_.reset(new OFstream(file));

@@ -11,6 +11,7 @@
 
 #include "structureMotion.H"
 #include "uniformDimensionedFields.H"
+#include "completeTime.H"
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
@@ -122,7 +123,13 @@ void Foam::structureMotion::write() const
         )
     );
     motion_->state().write(state);
-    state.regIOobject::write();
+    completeTime::atomicWrite
+    (
+        state,
+        runTime_.writeFormat(),
+        runTime_.writeVersion(),
+        runTime_.writeCompression()
+    );
 }
 
 
