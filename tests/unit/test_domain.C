@@ -9,9 +9,12 @@
 #include "testWorlds.H"
 #include "contact/NeighbourList.H"
 #include "field/VoronoiField.H"
+#include "domain/InflowOutflow.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
+
+#include <iostream>
 
 using namespace iceDEM;
 using namespace iceDEM::test;
@@ -595,5 +598,132 @@ TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
     catch (const Error& e)
     {
         EXPECT_EQ(e.entry(), "bodies");
+    }
+}
+
+
+namespace
+{
+
+//- Free drift at 1 m/s along +x through [0, 100] x [0, 50] m with inflow
+//  strips of 20 m at concentration c
+std::unique_ptr<World> driftWithInflow(double c, std::shared_ptr<InflowOutflow>& io)
+{
+    WorldSettings ws = noGravity();
+    ws.timeStep = 5e-3;
+    auto w = std::make_unique<World>(ws);
+    const int mat = w->addMaterial(ice(1e9));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+
+    InflowOutflowSettings s;
+    s.axis = 0;
+    s.sign = 1;
+    s.upstream = 0;
+    s.downstream = 100;
+    s.stripWidth = 20;
+    s.interval = 0.5;
+    s.material = mat;
+    s.field.xmin = 0; s.field.xmax = 100; s.field.ymin = 0; s.field.ymax = 50;
+    s.field.concentration = c;
+    s.field.meanFloeArea = 25;
+    s.field.radius = 0.1;
+    s.field.thickness.value = 0.5;
+    s.field.velocity = Vec3(1, 0, 0);
+    s.field.seed = 3;
+
+    VoronoiFieldReport rep;
+    for (const Floe& f : generateVoronoiField(s.field, rep))
+    {
+        const int shape = w->addShape(DilatedShape(f.core(), f.radius));
+        w->addBody(shape, mat, Vec3::Zero(), Quat::Identity(), f.velocity);
+    }
+    s.field.seed = 1000;    // the strips' floes: new shapes
+    io = std::make_shared<InflowOutflow>(s);
+    w->setInflowOutflow(io);
+    return w;
+}
+
+//- Floe area (outline of the dilated floe: core area + perimeter r + pi r^2
+//  is not needed: the generator's outline area is the floe's) with the
+//  centroid in [s0, s1) x [0, 50], over the window's area
+double windowConcentration(const World& w, double s0, double s1)
+{
+    double area = 0;
+    for (std::size_t i = 0; i < w.bodies().size(); ++i)
+    {
+        const Body& b = w.bodies()[i];
+        if (b.x.x() < s0 || b.x.x() >= s1) continue;
+        const DilatedShape& S = w.shapeOf(int(i));
+        // prism floe: volume of the faceted outer polyhedron / thickness
+        area += S.facetedVolume()/0.5;
+    }
+    return area/((s1 - s0)*50);
+}
+
+} // anonymous namespace
+
+
+TEST(inflowOutflow, upstreamConcentrationStaysAtTheTargetAndCountsBalance)
+{
+    const double c = 0.7;
+    std::shared_ptr<InflowOutflow> io;
+    auto w = driftWithInflow(c, io);
+    const long initial = static_cast<long>(w->bodies().size());
+    double sum = 0;
+    int samples = 0, maxContacts = 0;
+    while (w->time() < 150)
+    {
+        w->advanceTo(w->time() + 1.0);
+        maxContacts = std::max(maxContacts, w->contactCount());
+        // in + initial - out = floes in the domain, at every sample
+        ASSERT_EQ(io->floesIn() + initial - io->floesOut(), long(w->bodies().size()));
+        if (w->time() > 20)
+        {
+            // upstream window, downstream of the insertion strip
+            sum += windowConcentration(*w, 20, 60);
+            ++samples;
+        }
+    }
+    const double mean = sum/samples;
+    std::cout << "inflow/outflow: mean upstream concentration " << mean << " (target " << c
+              << "), " << io->strips() << " strips, " << io->floesIn() << " floes in, "
+              << io->floesOut() << " out, " << w->bodies().size() << " in the domain\n";
+    // 150 s at 1 m/s: the field passed 1.5 times, 6 or 7 strips
+    EXPECT_GE(io->strips(), 6);
+    EXPECT_GT(io->floesOut(), initial);
+    EXPECT_EQ(maxContacts, 0);          // inserted without touching
+    EXPECT_NEAR(mean, c, 0.02*c) << "mean upstream concentration " << mean;
+    // Nothing left beyond the bounds for longer than an interval
+    for (const Body& b : w->bodies())
+    {
+        EXPECT_LT(b.x.x(), 100 + 0.5*1.0 + 1e-9);
+    }
+}
+
+
+TEST(inflowOutflow, sameSeedSameRunAndBadConcentration)
+{
+    std::shared_ptr<InflowOutflow> ia, ib;
+    auto a = driftWithInflow(0.6, ia);
+    auto b = driftWithInflow(0.6, ib);
+    a->advanceTo(45);
+    b->advanceTo(45);
+    EXPECT_EQ(ia->floesIn(), ib->floesIn());
+    EXPECT_GT(ia->floesIn(), 0);
+    expectSameState(*a, *b);
+
+    InflowOutflowSettings s;
+    for (const double c : {0.0, -0.1, 1.2})
+    {
+        s.field.concentration = c;
+        try
+        {
+            InflowOutflow bad(s);
+            ADD_FAILURE() << "concentration " << c << " accepted";
+        }
+        catch (const Error& e)
+        {
+            EXPECT_EQ(e.entry(), "concentration");
+        }
     }
 }

@@ -7,6 +7,7 @@
 #include "worldDetail.H"
 #include "contact/NarrowPhase.H"
 #include "contact/NeighbourList.H"
+#include "domain/InflowOutflow.H"
 
 #include <algorithm>
 #include <cmath>
@@ -95,6 +96,9 @@ void World::stepBy(double dt)
     if (!oneRegion) bodyForces(dt);
     time_ += dt;
     ++step_;
+
+    // Bodies leave and enter between steps
+    if (inflowOutflow_) inflowOutflow_->update(*this);
 }
 
 
