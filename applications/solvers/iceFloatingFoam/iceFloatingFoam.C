@@ -63,6 +63,7 @@ Usage
 #include "dynamicFvMesh.H"
 #include "dynamicMotionSolverFvMesh.H"
 #include "sixDoFRigidBodyMotionSolver.H"
+#include "rigidLidMotionSolver.H"
 #include "singlePhaseTransportModel.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
@@ -82,7 +83,7 @@ namespace Foam
 {
 
 //- The sixDoF motion of the structure, or nullptr when the mesh is not moved
-//  by sixDoFRigidBodyMotion
+//  by sixDoFRigidBodyMotion or rigidLidSixDoFRigidBodyMotion
 static const sixDoFRigidBodyMotion* structureMotionOf
 (
     const dynamicFvMesh& mesh
@@ -95,7 +96,13 @@ static const sixDoFRigidBodyMotion* structureMotionOf
     }
     const auto* solver =
         dynamic_cast<const sixDoFRigidBodyMotionSolver*>(&dm->motion());
-    return solver ? &solver->motion() : nullptr;
+    if (solver)
+    {
+        return &solver->motion();
+    }
+    const auto* rigidLid =
+        dynamic_cast<const rigidLidMotionSolver*>(&dm->motion());
+    return rigidLid ? &rigidLid->motion() : nullptr;
 }
 
 } // End namespace Foam
