@@ -60,6 +60,7 @@ Usage
 
 #include "fvCFD.H"
 #include "clockTime.H"
+#include "cpuTime.H"
 #include "dynamicFvMesh.H"
 #include "dynamicMotionSolverFvMesh.H"
 #include "sixDoFRigidBodyMotionSolver.H"
@@ -179,11 +180,15 @@ int main(int argc, char *argv[])
 
     // Wall time per CFD step: flow solve, mesh motion (sixDoF + mesh), DEM
     // (with, separately, the resolved-velocity sampling inside it)
+    // and the same in CPU time of the process (all threads): the split on
+    // a machine shared with other jobs, where wall times are inflated
     clockTime stepClock;
+    cpuTime cpuClock;
 
     while (runTime.run())
     {
         scalar tFlow = 0, tMesh = 0, tDem = 0;
+        scalar cFlow = 0, cMesh = 0, cDem = 0;
         #include "readDyMControls.H"
         #include "CourantNo.H"
         #include "setDeltaT.H"
@@ -206,6 +211,7 @@ int main(int argc, char *argv[])
             {
                 // Structure motion (sixDoF) and mesh motion
                 stepClock.timeIncrement();
+                cpuClock.cpuTimeIncrement();
                 mesh.update();
 
                 if (mesh.changing())
@@ -229,9 +235,11 @@ int main(int argc, char *argv[])
                     }
                 }
                 tMesh += stepClock.timeIncrement();
+                cMesh += cpuClock.cpuTimeIncrement();
             }
 
             stepClock.timeIncrement();
+            cpuClock.cpuTimeIncrement();
             #include "UEqn.H"
 
             // --- Pressure corrector loop
@@ -246,19 +254,24 @@ int main(int argc, char *argv[])
                 turbulence->correct();
             }
             tFlow += stepClock.timeIncrement();
+            cFlow += cpuClock.cpuTimeIncrement();
         }
 
         // DEM sub-cycle over the step; the ice load of the next step
         if (dem)
         {
             stepClock.timeIncrement();
+            cpuClock.cpuTimeIncrement();
             dem->solve();
             tDem = stepClock.timeIncrement();
+            cDem = cpuClock.cpuTimeIncrement();
         }
         const scalar tSampling = dem ? dem->samplingSeconds() : 0;
         Info<< "Step wall time: flow " << tFlow << " s, mesh motion " << tMesh
             << " s, velocity sampling " << tSampling << " s, DEM "
-            << tDem - tSampling << " s" << nl;
+            << tDem - tSampling << " s" << nl
+            << "Step cpu time: flow " << cFlow << " s, mesh motion " << cMesh
+            << " s, DEM with sampling " << cDem << " s" << nl;
 
         if (motionLog.valid())
         {
