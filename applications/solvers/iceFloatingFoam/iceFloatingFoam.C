@@ -75,6 +75,7 @@ Usage
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
 #include "runWithoutFlow.H"
+#include "dictionaryChecks.H"
 
 #include <memory>
 
@@ -187,6 +188,7 @@ int main(int argc, char *argv[])
 
     while (runTime.run())
     {
+        #include "readFlowSolveInterval.H"
         scalar tFlow = 0, tMesh = 0, tDem = 0;
         scalar cFlow = 0, cMesh = 0, cDem = 0;
         #include "readDyMControls.H"
@@ -204,38 +206,36 @@ int main(int argc, char *argv[])
             dem->beginStep();
         }
 
-        // --- Pressure-velocity PIMPLE corrector loop
-        while (pimple.loop())
+        // The flow is solved every flowSolveInterval-th step (a steady
+        // current), over the time since its last solution: flow step =
+        // flowSolveInterval x deltaT, the structure, the mesh and the DEM
+        // still advance every deltaT. In between, the flow fields are kept
+        // and the fluid force of the last solution acts (its pressure holds
+        // the flow's reaction to the hull's mean acceleration over the flow
+        // step: the same impulse). The mesh is moved with deltaT (mesh flux
+        // = the mesh's velocity); under the rigid planar motion the cell
+        // volumes do not change, so the longer flow step on it is consistent.
+        const scalar deltaT = runTime.deltaTValue();
+        const bool solveFlow = (runTime.timeIndex() % flowSolveInterval == 0);
+        if (!solveFlow || flowSolveInterval > 1)
         {
-            if (pimple.firstIter() || moveMeshOuterCorrectors)
+            #include "moveMesh.H"
+        }
+        if (solveFlow && flowSolveInterval > 1)
+        {
+            runTime.setDeltaT(flowSolveInterval*deltaT, false);
+        }
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (solveFlow && pimple.loop())
+        {
+            if
+            (
+                flowSolveInterval == 1
+             && (pimple.firstIter() || moveMeshOuterCorrectors)
+            )
             {
-                // Structure motion (sixDoF) and mesh motion
-                stepClock.timeIncrement();
-                cpuClock.cpuTimeIncrement();
-                mesh.update();
-
-                if (mesh.changing())
-                {
-                    MRF.update();
-
-                    if (correctPhi)
-                    {
-                        // Absolute flux from the mapped face velocity
-                        phi = mesh.Sf() & Uf();
-
-                        #include "correctPhi.H"
-
-                        // Flux relative to the mesh motion
-                        fvc::makeRelative(phi, U);
-                    }
-
-                    if (checkMeshCourantNo)
-                    {
-                        #include "meshCourantNo.H"
-                    }
-                }
-                tMesh += stepClock.timeIncrement();
-                cMesh += cpuClock.cpuTimeIncrement();
+                #include "moveMesh.H"
             }
 
             stepClock.timeIncrement();
@@ -255,6 +255,10 @@ int main(int argc, char *argv[])
             }
             tFlow += stepClock.timeIncrement();
             cFlow += cpuClock.cpuTimeIncrement();
+        }
+        if (solveFlow && flowSolveInterval > 1)
+        {
+            runTime.setDeltaT(deltaT, false);
         }
 
         // DEM sub-cycle over the step; the ice load of the next step
