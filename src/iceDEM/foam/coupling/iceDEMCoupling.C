@@ -492,8 +492,11 @@ void Foam::iceDEMCoupling::checkRestraint() const
         return;
     }
     const IOdictionary dmd(io);
-    const dictionary& coeffs =
-        dmd.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+    const dictionary& coeffs = dmd.optionalSubDict
+    (
+        dmd.getOrDefault<word>("motionSolver", "sixDoFRigidBodyMotion")
+      + "Coeffs"
+    );
     const dictionary* rd = coeffs.findDict("restraints");
 
     bool found = false;

@@ -18,14 +18,19 @@
 const Foam::dictionary& Foam::structureMotion::coeffs() const
 {
     const word solver(dict_.get<word>("motionSolver"));
-    if (solver != "sixDoFRigidBodyMotion")
+    if
+    (
+        solver != "sixDoFRigidBodyMotion"
+     && solver != "rigidLidSixDoFRigidBodyMotion"
+    )
     {
         FatalIOErrorInFunction(dict_)
             << "Entry 'motionSolver " << solver << "' in " << dict_.name()
             << ": the structure motion needs 'motionSolver"
-            << " sixDoFRigidBodyMotion'." << nl << exit(FatalIOError);
+            << " sixDoFRigidBodyMotion' or 'rigidLidSixDoFRigidBodyMotion'."
+            << nl << exit(FatalIOError);
     }
-    return dict_.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+    return dict_.optionalSubDict(solver + "Coeffs");
 }
 
 
