@@ -309,8 +309,8 @@ void World::pairForces(double dtTangential)
 
                 const Vec3& x = fc.g.point;
                 p.forceOnJ += r.forceOnJ;
-                p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ);
-                if (!p.isWall()) p.torqueOnJ += (x - centroidOfJ(p)).cross(r.forceOnJ);
+                p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ) - r.coupleOnJ;
+                if (!p.isWall()) p.torqueOnJ += (x - centroidOfJ(p)).cross(r.forceOnJ) + r.coupleOnJ;
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
