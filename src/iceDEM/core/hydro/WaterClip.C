@@ -127,7 +127,7 @@ void addClippedTetrahedron(const Vec3 p[4], const double s[4], VolumeSum& sum)
 } // anonymous namespace
 
 
-SubmergedVolume submergedVolume
+SubmergedVolume submergedVolumeByTetrahedra
 (
     const PolyhedronView& P,
     const Mat3& R,
@@ -194,6 +194,151 @@ SubmergedVolume submergedVolume
     {
         result.volume = sum.volume;
         result.centroid = R*(centre + sum.first/sum.volume) + x;
+    }
+    return result;
+}
+
+
+int clipNegative
+(
+    const Vec3* p,
+    const double* s,
+    int n,
+    Vec3* out,
+    double* sOut
+)
+{
+    int m = 0;
+    int prev = n - 1;
+    for (int k = 0; k < n; ++k)
+    {
+        if (s[k] < 0)
+        {
+            if (s[prev] >= 0)
+            {
+                const double t = s[k]/(s[k] - s[prev]);
+                out[m] = p[k] + t*(p[prev] - p[k]);
+                sOut[m] = 0;
+                ++m;
+            }
+            out[m] = p[k];
+            sOut[m] = s[k];
+            ++m;
+        }
+        else if (s[prev] < 0)
+        {
+            const double t = s[prev]/(s[prev] - s[k]);
+            out[m] = p[prev] + t*(p[k] - p[prev]);
+            sOut[m] = 0;
+            ++m;
+        }
+        prev = k;
+    }
+    return m < 3 ? 0 : m;
+}
+
+
+SubmergedVolume submergedVolume
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const Vec3& x,
+    double level
+)
+{
+    const auto V = P.vertices();
+    const int nv = static_cast<int>(V.size());
+    if (nv > maxClipVertices)
+    {
+        return submergedVolumeByTetrahedra(P, R, x, level);
+    }
+
+    SubmergedVolume result;
+    result.volume = 0;
+    result.centroid = x;
+
+    // World-frame vertices relative to x (round-off scales with the size of
+    // the body, not with its distance from the origin) and their heights
+    // h = z - level
+    Vec3 r[maxClipVertices];
+    double h[maxClipVertices];
+    const double h0 = x.z() - level;
+    double hMin = std::numeric_limits<double>::max();
+    double hMax = -hMin;
+    for (int k = 0; k < nv; ++k)
+    {
+        r[k] = R*V[k];
+        h[k] = r[k].z() + h0;
+        hMin = std::min(hMin, h[k]);
+        hMax = std::max(hMax, h[k]);
+    }
+    if (!(hMin < 0))
+    {
+        return result;
+    }
+    if (hMax < 0)
+    {
+        // Entirely below: every face counts, and the sums above cancel to
+        // the body's own volume; the tetrahedra give it without the
+        // cancellation
+        return submergedVolumeByTetrahedra(P, R, x, level);
+    }
+
+    constexpr int cap = SubmergedFace::maxVertices;
+    Vec3 p[cap];
+    double s[cap];
+    Vec3 q[cap];
+    double hq[cap];
+
+    double vol = 0;         // sum n_z int h dA
+    Vec3 first = Vec3::Zero();  // sum n_z int h r dA (x, y used)
+    double second = 0;      // sum n_z int h^2/2 dA
+
+    const int nf = static_cast<int>(P.faces().size());
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        if (n + 1 > cap)
+        {
+            return submergedVolumeByTetrahedra(P, R, x, level);
+        }
+        bool wet = false;
+        for (int k = 0; k < n; ++k)
+        {
+            const int v = P.faceVertex(f, k);
+            p[k] = r[v];
+            s[k] = h[v];
+            wet = wet || s[k] < 0;
+        }
+        if (!wet)
+        {
+            continue;
+        }
+        const int m = clipNegative(p, s, n, q, hq);
+
+        // Fan from vertex 0; (q1 - q0) x (q2 - q0) . e_z = 2 A n_z
+        for (int k = 1; k + 1 < m; ++k)
+        {
+            const Vec3& a = q[0];
+            const Vec3& b = q[k];
+            const Vec3& c = q[k + 1];
+            const double az =
+                0.5*((b.x() - a.x())*(c.y() - a.y())
+               - (b.y() - a.y())*(c.x() - a.x()));
+            const double ha = hq[0], hb = hq[k], hc = hq[k + 1];
+            const double sh = ha + hb + hc;
+            vol += az*sh/3.0;
+            first += (az/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+            second +=
+                (az/12.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+        }
+    }
+
+    if (vol > 0)
+    {
+        result.volume = vol;
+        result.centroid =
+            x + Vec3(first.x()/vol, first.y()/vol, second/vol - h0);
     }
     return result;
 }
