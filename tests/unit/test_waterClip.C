@@ -284,7 +284,8 @@ TEST(WaterClip, belowPlusAboveIsWhole)
 // submergedVolume (divergence theorem over the wet faces) against the
 // general path (clipped tetrahedra) at random poses: level, tilted, on a
 // corner, overwashed, a sliver wet, nearly and entirely submerged, near the
-// origin and far from it; equal to round-off
+// origin and far from it, the truncated prisms among them; equal to
+// round-off
 TEST(WaterClip, divergenceEqualsTetrahedraOnRandomPoses)
 {
     const DilatedShape floe
@@ -303,6 +304,7 @@ TEST(WaterClip, divergenceEqualsTetrahedraOnRandomPoses)
     std::mt19937 gen(2026);
     std::uniform_real_distribution<double> U(-1, 1);
     int partly = 0;
+    int prismPoses = 0;
     for (int trial = 0; trial < 2000; ++trial)
     {
         const PolyhedronView P = trial % 2 ? PolyhedronView(box) : outer;
@@ -325,9 +327,16 @@ TEST(WaterClip, divergenceEqualsTetrahedraOnRandomPoses)
         EXPECT_NEAR((a.centroid - b.centroid).norm(), 0, tol*L + 1e-14*far)
             << "trial " << trial;
         partly += b.volume > 0 && b.volume < whole;
+        // Poses that take the truncated-prism path
+        std::vector<double> h;
+        for (const Vec3& v : P.vertices()) h.push_back((R*v + x).z() - level);
+        prismPoses += truncatedPrismBottom(P, R, h.data()) >= 0;
     }
-    // Most poses cut the body
+    // Most poses cut the body; many cut the sides only
     EXPECT_GT(partly, 1000);
+    EXPECT_GT(prismPoses, 150);
+    std::cout << partly << " of 2000 poses cut, " << prismPoses
+              << " of them across the sides only" << std::endl;
 }
 
 

@@ -277,22 +277,31 @@ void Drag::exactBodyDrag
               + " of SubmergedFace::maxVertices - 1"
             );
         }
-        bool faceWet = false;
+        int nBelow = 0;
         for (int k = 0; k < n; ++k)
         {
             const int v = P.faceVertex(f, k);
-            p[k] = r[v];
+            q[k] = r[v];
             s[k] = h[v];
-            faceWet = faceWet || s[k] < 0;
+            nBelow += s[k] < 0;
         }
-        if (!faceWet)
+        if (nBelow == 0)
         {
             continue;
         }
-        const int m = clipNegative(p, s, n, q, sq);
-        if (m == 0)
+        // A face entirely below is its own clipped polygon
+        int m = n;
+        if (nBelow < n)
         {
-            continue;
+            for (int k = 0; k < n; ++k)
+            {
+                p[k] = q[k];
+            }
+            m = clipNegative(p, s, n, q, sq);
+            if (m == 0)
+            {
+                continue;
+            }
         }
 
         const Vec3 nrm = R*face.normal;
@@ -313,11 +322,30 @@ void Drag::exactBodyDrag
             // triangles: with vertex values f_i, S = sum f_i,
             // Q = sum_{i<=j} f_i f_j, int lambda_i f^2 dA = A/30 (Q +
             // f_i (f_i + S)) (barycentric lambda_i)
+            int nLead = 0;
             for (int k = 0; k < m; ++k)
             {
                 s[k] = -(w + omega.cross(q[k])).dot(nrm);
+                nLead += s[k] < 0;
             }
-            const int ml = clipNegative(q, s, m, lead, sl);
+            if (nLead == 0)
+            {
+                continue;
+            }
+            // Leading everywhere: the wet polygon itself
+            int ml = m;
+            if (nLead < m)
+            {
+                ml = clipNegative(q, s, m, lead, sl);
+            }
+            else
+            {
+                for (int k = 0; k < m; ++k)
+                {
+                    lead[k] = q[k];
+                    sl[k] = s[k];
+                }
+            }
             double I = 0;
             Vec3 Ir = Vec3::Zero();
             for (int k = 1; k + 1 < ml; ++k)
@@ -358,27 +386,48 @@ void Drag::exactBodyDrag
                 continue;
             }
             centroid /= area;
+
+            // u_t is linear: its value at the centroid and its change
+            // towards each vertex (e_k = q_k - centroid)
+            const auto tangential = [&](const Vec3& u)
+            {
+                return Vec3(u - u.dot(nrm)*nrm);
+            };
+            const Vec3 utc = tangential(w + omega.cross(centroid));
             for (int k = 0; k < m; ++k)
             {
-                const Vec3 eb = q[k] - centroid;
-                const Vec3 ec = q[k + 1 == m ? 0 : k + 1] - centroid;
-                const double A = 0.5*(eb.cross(ec)).dot(nrm);
+                lead[k] = q[k] - centroid;
+                p[k] = tangential(omega.cross(lead[k]));
+            }
+            Vec3 Fs = Vec3::Zero();
+            for (int k = 0; k < m; ++k)
+            {
+                const int k1 = k + 1 == m ? 0 : k + 1;
+                const Vec3& eb = lead[k];
+                const Vec3& ec = lead[k1];
+                const double A2 = (eb.cross(ec)).dot(nrm);
+                // Sum of dF and of its moments about the centroid, as
+                // eb x Gb + ec x Gc
+                Vec3 Ft = Vec3::Zero(), Gb = Vec3::Zero(), Gc = Vec3::Zero();
                 for (int i = 0; i < 2; ++i)
                 {
                     for (int j = 0; j < 3; ++j)
                     {
-                        const Vec3 pt =
-                            centroid
-                          + coneT[i]*((1 - coneS[j])*eb + coneS[j]*ec);
-                        const Vec3 ur = w + omega.cross(pt);
-                        const Vec3 ut = ur - ur.dot(nrm)*nrm;
-                        const double wgt = 2*coeff*A*coneWT[i]*coneWS[j];
+                        const double tb = coneT[i]*(1 - coneS[j]);
+                        const double tc = coneT[i]*coneS[j];
+                        const Vec3 ut = utc + tb*p[k] + tc*p[k1];
+                        const double wgt = coeff*A2*coneWT[i]*coneWS[j];
                         const Vec3 dF = (-wgt*ut.norm())*ut;
-                        F += dF;
-                        M += pt.cross(dF);
+                        Ft += dF;
+                        Gb += tb*dF;
+                        Gc += tc*dF;
                     }
                 }
+                Fs += Ft;
+                M += eb.cross(Gb) + ec.cross(Gc);
             }
+            F += Fs;
+            M += centroid.cross(Fs);
         }
     }
 }

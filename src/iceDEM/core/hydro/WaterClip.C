@@ -238,6 +238,56 @@ int clipNegative
 }
 
 
+int truncatedPrismBottom
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const double* h
+)
+{
+    // The cap candidate: the face of most vertices (the outline of a floe;
+    // any face of a box)
+    const int nf = static_cast<int>(P.faces().size());
+    int cap0 = 0;
+    for (int f = 1; f < nf; ++f)
+    {
+        if (P.faces()[f].count > P.faces()[cap0].count) cap0 = f;
+    }
+    const Vec3& axis = P.faces()[cap0].normal;
+    int cap1 = -1;
+    for (int f = 0; f < nf; ++f)
+    {
+        if (f == cap0) continue;
+        const double d = P.faces()[f].normal.dot(axis);
+        if (d < -1 + prismTolerance && cap1 < 0)
+        {
+            cap1 = f;
+        }
+        else if (std::abs(d) > prismTolerance)
+        {
+            return -1;
+        }
+    }
+    if (cap1 < 0)
+    {
+        return -1;
+    }
+    // The lower cap entirely below, the upper one not at all
+    const double nz = R.row(2).dot(axis);
+    const int bottom = nz < 0 ? cap0 : cap1;
+    const int top = nz < 0 ? cap1 : cap0;
+    for (int k = 0; k < P.faces()[bottom].count; ++k)
+    {
+        if (!(h[P.faceVertex(bottom, k)] < 0)) return -1;
+    }
+    for (int k = 0; k < P.faces()[top].count; ++k)
+    {
+        if (h[P.faceVertex(top, k)] < 0) return -1;
+    }
+    return bottom;
+}
+
+
 SubmergedVolume submergedVolume
 (
     const PolyhedronView& P,
@@ -284,6 +334,48 @@ SubmergedVolume submergedVolume
         return submergedVolumeByTetrahedra(P, R, x, level);
     }
 
+    const int nf = static_cast<int>(P.faces().size());
+
+    // A right prism (a floe) cut across its sides only: the truncated
+    // prism. With the field h a (a the prism's axis, out of the bottom cap),
+    // the sides (a.n = 0) drop out of the divergence theorem as the water
+    // plane does: a length l = -h/a_z along a above every bottom point,
+    //   V = int_bottom l dA,  int r dV = int_bottom (r l + a l^2/2) dA.
+    {
+        const int bottom = truncatedPrismBottom(P, R, h);
+        if (bottom >= 0)
+        {
+            const Vec3 nb = R*P.faces()[bottom].normal;
+            const double az = -nb.z();
+            const int n = P.faces()[bottom].count;
+            const Vec3& a = r[P.faceVertex(bottom, 0)];
+            const double ha = h[P.faceVertex(bottom, 0)];
+            double I0 = 0, I2 = 0;
+            Vec3 I1 = Vec3::Zero();
+            for (int k = 1; k + 1 < n; ++k)
+            {
+                const int vb = P.faceVertex(bottom, k);
+                const int vc = P.faceVertex(bottom, k + 1);
+                const Vec3& b = r[vb];
+                const Vec3& c = r[vc];
+                const double hb = h[vb], hc = h[vc];
+                const double A = 0.5*((b - a).cross(c - a)).dot(nb);
+                const double sh = ha + hb + hc;
+                I0 += A*sh/3.0;
+                I1 += (A/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+                I2 += (A/6.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+            }
+            const double vol = -I0/az;
+            if (vol > 0)
+            {
+                result.volume = vol;
+                result.centroid =
+                    x + (-I1/az - (0.5*I2/(az*az))*nb)/vol;
+            }
+            return result;
+        }
+    }
+
     constexpr int cap = SubmergedFace::maxVertices;
     Vec3 p[cap];
     double s[cap];
@@ -294,7 +386,6 @@ SubmergedVolume submergedVolume
     Vec3 first = Vec3::Zero();  // sum n_z int h r dA (x, y used)
     double second = 0;      // sum n_z int h^2/2 dA
 
-    const int nf = static_cast<int>(P.faces().size());
     for (int f = 0; f < nf; ++f)
     {
         const int n = P.faces()[f].count;
@@ -302,30 +393,34 @@ SubmergedVolume submergedVolume
         {
             return submergedVolumeByTetrahedra(P, R, x, level);
         }
-        bool wet = false;
+        int nBelow = 0;
         for (int k = 0; k < n; ++k)
         {
             const int v = P.faceVertex(f, k);
             p[k] = r[v];
             s[k] = h[v];
-            wet = wet || s[k] < 0;
+            nBelow += s[k] < 0;
         }
-        if (!wet)
+        if (nBelow == 0)
         {
             continue;
         }
-        const int m = clipNegative(p, s, n, q, hq);
+        // A face entirely below is its own clipped polygon
+        const bool whole = nBelow == n;
+        const int m = whole ? n : clipNegative(p, s, n, q, hq);
+        const Vec3* qq = whole ? p : q;
+        const double* hh = whole ? s : hq;
 
         // Fan from vertex 0; (q1 - q0) x (q2 - q0) . e_z = 2 A n_z
         for (int k = 1; k + 1 < m; ++k)
         {
-            const Vec3& a = q[0];
-            const Vec3& b = q[k];
-            const Vec3& c = q[k + 1];
+            const Vec3& a = qq[0];
+            const Vec3& b = qq[k];
+            const Vec3& c = qq[k + 1];
             const double az =
                 0.5*((b.x() - a.x())*(c.y() - a.y())
                - (b.y() - a.y())*(c.x() - a.x()));
-            const double ha = hq[0], hb = hq[k], hc = hq[k + 1];
+            const double ha = hh[0], hb = hh[k], hc = hh[k + 1];
             const double sh = ha + hb + hc;
             vol += az*sh/3.0;
             first += (az/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
