@@ -45,8 +45,10 @@ Usage
                               (default: the core's default)
       -threads 1,2            thread counts
       -steps S                steps per repetition, every field (default:
-                              drifting 4e6/N within [100, 2000],
+                              drifting and floating -duration,
                               compacting -compactSteps)
+      -duration T             drifting and floating: simulated seconds per
+                              repetition (default 15, the open peer's run)
       -compactSteps S         compacting steps per repetition (default 300)
       -reps R                 repetitions, median reported (default 3)
       -warmup T               drifting: simulated seconds run before the
@@ -240,7 +242,7 @@ struct Options
     int compactN = 2000;
     std::vector<int> threads{1, 2};
     int steps = 0;                  //!< 0: from the work per repetition
-    double work = 4e6;              //!< drifting floe-steps per repetition
+    double duration = 15;           //!< drifting, floating: simulated s
     int compactSteps = 300;
     int reps = 3;
     double warmup = 0;
@@ -260,7 +262,7 @@ struct Options
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
         " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
-        " [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
+        " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
 }
@@ -294,6 +296,7 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-dragIntegration") o.dragIntegration = value();
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
+        else if (opt == "-duration") o.duration = std::atof(value().c_str());
         else if (opt == "-compactSteps") o.compactSteps = std::atoi(value().c_str());
         else if (opt == "-h" || opt == "-help") usage("help");
         else if (opt == "-reps") o.reps = std::max(1, std::atoi(value().c_str()));
@@ -322,6 +325,7 @@ constexpr double kDensity = 920;        //!< [kg/m3]
 constexpr double kSpeed = 0.5;          //!< drifting speed [m/s]
 constexpr double kSpin = 0.05;          //!< largest spin [rad/s]
 constexpr int kCylinderSides = 48;
+constexpr double kTimeStep = 1e-3;      //!< DEM step [s]
 constexpr double kGravity = 9.81;       //!< floating field [m/s2]
 constexpr double kWaterDensity = 1025;  //!< floating field [kg/m3]
 constexpr double kCurrent = 0.3;        //!< floating field, along x [m/s]
@@ -465,7 +469,7 @@ std::unique_ptr<World> buildWorld
 )
 {
     WorldSettings ws;
-    ws.timeStep = 1e-3;
+    ws.timeStep = kTimeStep;
     ws.gravity = f.floating ? Vec3(0, 0, -kGravity) : Vec3::Zero();
     ws.skin = o.skin;
     ws.featureSkin = o.featureSkin;
@@ -745,7 +749,8 @@ int stepsFor(int n, bool compacting, const Options& o)
 {
     if (o.steps > 0) return o.steps;
     if (compacting) return o.compactSteps;
-    return std::max(100, std::min(2000, int(std::lround(o.work/n))));
+    (void)n;
+    return std::max(1, int(std::lround(o.duration/kTimeStep)));
 }
 
 
