@@ -245,13 +245,20 @@ int truncatedPrismBottom
     const double* h
 )
 {
-    // The cap candidate: the face of most vertices (the outline of a floe;
-    // any face of a box)
+    // The cap candidate: the face whose normal is nearest the vertical
+    // (the bottom or the top of a floating floe, whatever its outline)
     const int nf = static_cast<int>(P.faces().size());
+    const Vec3 up = R.row(2).transpose();
     int cap0 = 0;
-    for (int f = 1; f < nf; ++f)
+    double best = -1;
+    for (int f = 0; f < nf; ++f)
     {
-        if (P.faces()[f].count > P.faces()[cap0].count) cap0 = f;
+        const double c = std::abs(up.dot(P.faces()[f].normal));
+        if (c > best)
+        {
+            best = c;
+            cap0 = f;
+        }
     }
     const Vec3& axis = P.faces()[cap0].normal;
     int cap1 = -1;
@@ -273,7 +280,7 @@ int truncatedPrismBottom
         return -1;
     }
     // The lower cap entirely below, the upper one not at all
-    const double nz = R.row(2).dot(axis);
+    const double nz = up.dot(axis);
     const int bottom = nz < 0 ? cap0 : cap1;
     const int top = nz < 0 ? cap1 : cap0;
     for (int k = 0; k < P.faces()[bottom].count; ++k)
