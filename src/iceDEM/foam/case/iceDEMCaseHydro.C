@@ -166,7 +166,7 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
         dd,
         {
             "type", "current", "U", "formCoefficient", "skinCoefficient",
-            "subdivision", "bottomCosine",
+            "subdivision", "bottomCosine", "integration",
             // resolved only (resolvedFlowVelocity)
             "maxWalk", "interpolation", "sampling"
         },
@@ -191,6 +191,13 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
             << "Entry 'bottomCosine' is " << drag.bottomCosine
             << ": it must lie in (0, 1]" << nl
             << exit(FatalIOError);
+    }
+    if (dd.found("integration"))
+    {
+        drag.integration = ::iceDEM::dragIntegrationFromName
+        (
+            selectName(dd, "integration", wordList({"exact", "sampled"}))
+        );
     }
     coreCall(dd, "drag", [&]{ ::iceDEM::checkDragSettings(drag); });
 
