@@ -55,6 +55,7 @@ Usage
 #include "iceDEMOutput.H"
 #include "IOdictionary.H"
 #include "runWithoutFlow.H"
+#include "dictionaryChecks.H"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -102,6 +103,9 @@ int main(int argc, char *argv[])
     }
 
     #include "createTime.H"
+
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
 
     #ifdef _OPENMP
     Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;

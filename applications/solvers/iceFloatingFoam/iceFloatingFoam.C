@@ -73,6 +73,7 @@ Usage
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
 #include "runWithoutFlow.H"
+#include "dictionaryChecks.H"
 
 #include <memory>
 
@@ -121,6 +122,9 @@ int main(int argc, char *argv[])
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
     #include "createTime.H"
+
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
 
     if (args.found("noFlow"))
     {

@@ -105,42 +105,16 @@ void Foam::iceDEMCase::readBodies()
         const word type =
             selectName(d, "type", wordList({"box", "prism", "polyhedron"}));
 
-        if (type == "box")
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "halfExtents", "centre", "orientation",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
-        else if (type == "prism")
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "outline", "zBottom", "thickness",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
-        else
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "points", "centre", "orientation",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
+        checkEntries
+        (
+            d, "constant/iceField",
+            {
+                type == "box" ? "bodies/*(type box)"
+              : type == "prism" ? "bodies/*(type prism)"
+              : "bodies/*(type polyhedron)"
+            },
+            what
+        );
 
         const scalar r = positive(d, "radius");
         const label material = materialOf(d);
@@ -261,8 +235,10 @@ void Foam::iceDEMCase::readBodies()
 
     if (bodyNames_.empty())
     {
-        IOWarningInFunction(bodies)
-            << "No body in 'bodies'" << nl << endl;
+        FatalIOErrorInFunction(bodies)
+            << "No body in 'bodies': there is nothing to simulate (a"
+            << " structure alone moves without constant/iceDEMProperties)"
+            << nl << exit(FatalIOError);
     }
 }
 

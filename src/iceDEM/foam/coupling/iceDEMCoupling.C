@@ -124,7 +124,7 @@ std::vector<::iceDEM::Vec3> worldCoreVertices
 
 void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
 {
-    checkKeywords(sd, {"material", "radius", "dict"}, "structure");
+    checkEntries(sd, "constant/iceDEMProperties", {"structure"}, "structure");
 
     ::iceDEM::World& w = case_->world();
 
@@ -571,7 +571,10 @@ Foam::iceDEMCoupling::iceDEMCoupling
     if (props.found("coupling", keyType::LITERAL))
     {
         const dictionary& cd = props.subDict("coupling");
-        checkKeywords(cd, {"force", "moment"}, "coupling");
+        checkEntries
+        (
+            cd, "constant/iceDEMProperties", {"coupling"}, "coupling"
+        );
         forceName = cd.getOrDefault<word>("force", forceName);
         momentName = cd.getOrDefault<word>("moment", momentName);
     }
