@@ -405,6 +405,33 @@ void Foam::iceDEMCase::checkDerived() const
         }
     }
 
+    // Energies (squares of the speeds) and positions the contact detection
+    // can resolve: |x| eps below the dilation radius
+    for (size_t i = 0; i < bodies.size(); ++i)
+    {
+        const ::iceDEM::Body& b = bodies[i];
+        const scalar energy =
+            0.5*b.mass*b.v.squaredNorm() + 0.5*b.omega().dot(b.L);
+        const scalar r = world_->shapeOf(int(i)).radius();
+        const word& name = bodyNames_[i];
+        if (!std::isfinite(energy))
+        {
+            FatalIOErrorInFunction(bodyDicts.subDict(name))
+                << "Body " << name << ": entries 'velocity' and 'omega' give"
+                << " a kinetic energy beyond double precision" << nl
+                << exit(FatalIOError);
+        }
+        if (!(b.x.norm()*std::numeric_limits<double>::epsilon() < r))
+        {
+            FatalIOErrorInFunction(bodyDicts.subDict(name))
+                << "Body " << name << ": its position (entries 'centre',"
+                << " 'outline', 'zBottom' or 'points') is too far from the"
+                << " origin for double precision to resolve its dilation"
+                << " radius " << r << " (|x| eps < radius)" << nl
+                << exit(FatalIOError);
+        }
+    }
+
     // The Hertz contact time that the time-step check uses
     if (bodies.size())
     {
@@ -414,7 +441,8 @@ void Foam::iceDEMCase::checkDerived() const
         if (!finitePositive(tc) || tc >= std::numeric_limits<double>::max())
         {
             FatalIOErrorInFunction(matDicts)
-                << "The Hertz contact time estimate is " << tc << " s: the"
+                << "The Hertz contact time estimate over- or underflows"
+                << " double precision (" << tc << " s): the"
                 << " entries 'youngsModulus' and 'density' of the materials"
                 << " (or 'contactCheckVelocity') are beyond what double"
                 << " precision resolves" << nl

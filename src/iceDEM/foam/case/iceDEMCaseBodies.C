@@ -150,7 +150,7 @@ void Foam::iceDEMCase::readBodies()
             }
             core = coreCall
             (
-                d, what,
+                d, what + ", entry 'halfExtents'",
                 [&]{ return ::iceDEM::ConvexPolyhedron::box(toVec3(h - vector::uniform(r))); }
             );
             position = toVec3(d.get<vector>("centre"));
@@ -171,7 +171,7 @@ void Foam::iceDEMCase::readBodies()
             }
             core = coreCall
             (
-                d, what,
+                d, what + ", entries 'outline', 'zBottom', 'thickness'",
                 [&]{ return ::iceDEM::floeCore(pts, zBottom, thickness, r); }
             );
             // The core is in world coordinates

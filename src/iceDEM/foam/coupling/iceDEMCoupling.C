@@ -144,6 +144,12 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
     }
     const scalar r = positive(sd, "radius");
     const word dictName = sd.getOrDefault<word>("dict", "structureDict");
+    if (!isFile(runTime_.globalPath()/"constant"/dictName))
+    {
+        FatalIOErrorInFunction(sd)
+            << "Entry 'dict': no file constant/" << dictName << " (the"
+            << " structure dictionary)" << nl << exit(FatalIOError);
+    }
 
     // The one definition of the structure (the case root's constant/, also
     // in parallel)
