@@ -27,7 +27,7 @@ import time
 
 import foamDictText as fd
 
-TIMEOUT = 20            # seconds per run: the base runs take well under 1 s
+TIMEOUT = 15            # seconds per run: the base runs take well under 1 s
 WORKERS = 2
 
 # Base cases (tests/cases/inputBattery/bases/<name>): the application and
