@@ -139,7 +139,6 @@ def mutations(e):
                 numeric(name, text)
     elif kind == 'word':
         out.append(('wrongType', 'set', '(1 2)', 'error'))
-        names = rng.split('|')
         out.append(('unknownName', 'set', 'bogusName',
                     'either' if rng == '-' else 'error'))
     elif kind == 'bool':
@@ -305,8 +304,7 @@ def main():
                 new = fd.rename(text, keys, e['key'], bad)
                 if new is None:
                     new = fd.set_value(text, keys, bad, '1')
-                named = [bad] if expect == 'error' else [bad, e['key']]
-                named = [bad, e['key']]
+                named = [bad, e['key']]    # required: 'missing' is named
             else:
                 new = fd.set_value(text, keys, e['key'], value)
                 named = [e['key']]
