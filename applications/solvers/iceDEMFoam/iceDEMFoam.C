@@ -59,6 +59,7 @@ Usage
 #include "runWithoutFlow.H"
 #include "completeTime.H"
 #include "completeTimeWriter.H"
+#include "dictionaryChecks.H"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -107,6 +108,9 @@ int main(int argc, char *argv[])
     // Started from the last complete time (a run killed while writing)
     autoPtr<Time> runTimePtr(completeTime::createTime(args));
     Time& runTime = runTimePtr();
+
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
 
     #ifdef _OPENMP
     Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;

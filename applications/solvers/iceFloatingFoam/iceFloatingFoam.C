@@ -135,6 +135,9 @@ int main(int argc, char *argv[])
     autoPtr<Time> runTimePtr(completeTime::createTime(args));
     Time& runTime = runTimePtr();
 
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
+
     if (args.found("noFlow"))
     {
         Info<< "\n-noFlow: the structure without fluid" << endl;

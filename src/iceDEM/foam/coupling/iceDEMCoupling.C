@@ -125,7 +125,7 @@ std::vector<::iceDEM::Vec3> worldCoreVertices
 
 void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
 {
-    checkKeywords(sd, {"material", "radius", "dict"}, "structure");
+    checkEntries(sd, "constant/iceDEMProperties", {"structure"}, "structure");
 
     ::iceDEM::World& w = case_->world();
 
@@ -145,6 +145,12 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
     }
     const scalar r = positive(sd, "radius");
     const word dictName = sd.getOrDefault<word>("dict", "structureDict");
+    if (!isFile(runTime_.globalPath()/"constant"/dictName))
+    {
+        FatalIOErrorInFunction(sd)
+            << "Entry 'dict': no file constant/" << dictName << " (the"
+            << " structure dictionary)" << nl << exit(FatalIOError);
+    }
 
     // The one definition of the structure (the case root's constant/, also
     // in parallel)
@@ -575,7 +581,10 @@ Foam::iceDEMCoupling::iceDEMCoupling
     if (props.found("coupling", keyType::LITERAL))
     {
         const dictionary& cd = props.subDict("coupling");
-        checkKeywords(cd, {"force", "moment"}, "coupling");
+        checkEntries
+        (
+            cd, "constant/iceDEMProperties", {"coupling"}, "coupling"
+        );
         forceName = cd.getOrDefault<word>("force", forceName);
         momentName = cd.getOrDefault<word>("moment", momentName);
     }

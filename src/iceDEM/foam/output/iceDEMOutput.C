@@ -93,12 +93,10 @@ Foam::iceDEMOutput::iceDEMOutput(const iceDEMCase& demCase)
     lastBodiesTime_(-GREAT)
 {
     const dictionary& d = demCase.outputDict();
-    checkKeywords
-    (
-        d,
-        {"precision", "vtk", "vtkSurface", "vtkResolution", "vtkFormat"},
-        "output of constant/iceDEMProperties"
-    );
+    if (demCase.properties().isDict("output"))
+    {
+        checkEntries(d, "constant/iceDEMProperties", {"output"}, "output");
+    }
 
     precision_ = labelInRange(d, "precision", 4, 17, 12);
     vtk_ = d.getOrDefault<bool>("vtk", true);

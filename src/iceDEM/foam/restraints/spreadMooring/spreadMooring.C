@@ -12,6 +12,7 @@
 #include "spreadMooring.H"
 #include "IOField.H"
 #include "addToRunTimeSelectionTable.H"
+#include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
@@ -377,6 +378,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
 )
 {
     sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
+    iceDEMChecks::checkEntries
+    (
+        sDoFRBMRCoeffs_, "constant/dynamicMeshDict",
+        {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint spreadMooring)"},
+        "restraint " + name_
+    );
 
     const bool hasLines = sDoFRBMRDict.found("lines");
     const bool hasSpread = sDoFRBMRDict.found("spread");
@@ -411,6 +418,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
         {
             dictionary lineDict(lines[i]);
             lineDict.name() = sDoFRBMRDict.name() + ".lines." + Foam::name(i);
+            iceDEMChecks::checkEntries
+            (
+                lineDict, "constant/dynamicMeshDict",
+                {"spreadMooring line"},
+                "line " + Foam::name(i) + " of restraint " + name_
+            );
             readLine
             (
                 lineDict,
@@ -423,6 +436,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
     else
     {
         const dictionary& dict = sDoFRBMRDict.subDict("spread");
+        iceDEMChecks::checkEntries
+        (
+            dict, "constant/dynamicMeshDict",
+            {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint spreadMooring)/spread"},
+            "spread of restraint " + name_
+        );
         const label n = dict.get<label>("nLines");
         if (n < 1)
         {
