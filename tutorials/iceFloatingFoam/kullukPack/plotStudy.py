@@ -16,9 +16,10 @@
 #   the batch-means half-width of (F + W - D).d / |mean D|.
 #   Speed: floe-steps per second and contacts per step from speed.txt.
 #   At the hull (bodies.dat at the write times after the transient): the
-#   mean number of floes whose centre is inside the waterline circle (35 m,
-#   under the cone), and of floes within 60 m of the axis submerged deeper
-#   than their own thickness (pushed down the cone).
+#   mean number of floes whose centre is inside the waterline circle (35 m:
+#   under the hull), and of floes within 60 m of the axis whose top is
+#   below the water (pushed down the cone or under the hull), and of all
+#   floes within 60 m.
 # Across seeds (one row per thickness and concentration): the mean of each
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
@@ -100,14 +101,15 @@ def stats(x):
 def hullCounts(d, tStart, floes):
     """Mean over the write times after the transient of the floes (ids below
     'floes': the structure's pieces follow them) whose centre is inside the
-    waterline circle below half their thickness (under the cone), and of
-    those within NEAR_RADIUS of the axis deeper than their thickness (pushed
-    down the cone; a floating floe's centre is at about -0.38 h)."""
+    waterline circle (under the hull: only a submerged floe gets there), and
+    of the floes within NEAR_RADIUS of the axis whose top is below the water
+    (centre below -h/2: pushed down the cone or under the hull; a floating
+    floe's centre is at about -0.38 h)."""
     f = os.path.join(d, "postProcessing/iceDEM/0/bodies.dat")
     if not os.path.exists(f):
-        return float("nan"), float("nan")
+        return float("nan"), float("nan"), float("nan")
     h = float(readParameters(d)["thickness"])
-    under, down = {}, {}
+    under, down, near = {}, {}, {}
     for line in open(f):
         if line.startswith("#"):
             continue
@@ -119,13 +121,17 @@ def hullCounts(d, tStart, floes):
         r = math.hypot(x, y)
         under.setdefault(t, 0)
         down.setdefault(t, 0)
-        if r < WATERLINE_RADIUS and z < -0.5*h:
+        near.setdefault(t, 0)
+        if r < NEAR_RADIUS:
+            near[t] += 1
+        if r < WATERLINE_RADIUS:
             under[t] += 1
-        if r < NEAR_RADIUS and z < -h:
+        if r < NEAR_RADIUS and z < -0.5*h:
             down[t] += 1
     if not under:
-        return float("nan"), float("nan")
-    return np.mean(list(under.values())), np.mean(list(down.values()))
+        return float("nan"), float("nan"), float("nan")
+    return (np.mean(list(under.values())), np.mean(list(down.values())),
+            np.mean(list(near.values())))
 
 
 def analyseRun(d, transient):
@@ -168,7 +174,8 @@ def analyseRun(d, transient):
         r["wallTime"] = wall
     floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
                                     if l.split()[:1] == ["floes"]][-1])
-    r["floesUnderHull"], r["floesPushedDown"] = hullCounts(d, transient, floes)
+    r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"] = \
+        hullCounts(d, transient, floes)
     return r
 
 
