@@ -19,7 +19,8 @@
 #   mean number of floes whose centre is inside the waterline circle (35 m:
 #   under the hull), and of floes within 60 m of the axis whose top is
 #   below the water (pushed down the cone or under the hull), and of all
-#   floes within 60 m.
+#   floes within 60 m; the mean x velocity of all floes (packSpeedX: a
+#   jammed pack is at rest, a pack in free drift moves at about 0.4 m/s).
 # Across seeds (one row per thickness and concentration): the mean of each
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
@@ -107,9 +108,9 @@ def hullCounts(d, tStart, floes):
     floe's centre is at about -0.38 h)."""
     f = os.path.join(d, "postProcessing/iceDEM/0/bodies.dat")
     if not os.path.exists(f):
-        return float("nan"), float("nan"), float("nan")
+        return float("nan"), float("nan"), float("nan"), float("nan")
     h = float(readParameters(d)["thickness"])
-    under, down, near = {}, {}, {}
+    under, down, near, vx = {}, {}, {}, []
     for line in open(f):
         if line.startswith("#"):
             continue
@@ -118,6 +119,7 @@ def hullCounts(d, tStart, floes):
         if t <= tStart or i >= floes:
             continue
         x, y, z = float(v[2]), float(v[3]), float(v[4])
+        vx.append(float(v[5]))
         r = math.hypot(x, y)
         under.setdefault(t, 0)
         down.setdefault(t, 0)
@@ -129,9 +131,9 @@ def hullCounts(d, tStart, floes):
         if r < NEAR_RADIUS and z < -0.5*h:
             down[t] += 1
     if not under:
-        return float("nan"), float("nan"), float("nan")
+        return float("nan"), float("nan"), float("nan"), float("nan")
     return (np.mean(list(under.values())), np.mean(list(down.values())),
-            np.mean(list(near.values())))
+            np.mean(list(near.values())), np.mean(vx))
 
 
 def analyseRun(d, transient):
@@ -174,7 +176,7 @@ def analyseRun(d, transient):
         r["wallTime"] = wall
     floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
                                     if l.split()[:1] == ["floes"]][-1])
-    r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"] = \
+    r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"], r["packSpeedX"] = \
         hullCounts(d, transient, floes)
     return r
 
@@ -296,7 +298,8 @@ def figures(d, runs, agg):
 
 def convergence(a, runs):
     keys = ["dir", "length", "width", "deltaT", "seed", "floes", "Fh_mean", "Fh_hw", "Fh_std",
-            "Fh_p99", "Fh_max", "Tmax_mean", "drive", "ratio", "ratioHalfWidth",
+            "Fh_p99", "Fh_max", "Tmax_mean", "drive", "ratio", "ratioHalfWidth", "packSpeedX",
+            "floesUnderHull", "floesPushedDown", "floesNearHull",
             "floeStepsPerSecond", "contactsPerStep", "wallTime"]
     for r in runs:
         for k in keys:
