@@ -1,0 +1,331 @@
+#!/usr/bin/env python3
+# -----------------------------------------------------------------------------
+# iceFloatingFoam/kullukPack: the study's CSV and figures from the finished
+# points (the folders with a file 'done') of runStudy or domainConvergence.
+#
+#   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
+#
+# Per run, from postProcessing/iceLoadStatistics/<start>/series.dat of every
+# session (a resumed run has one folder per session; the samples of a
+# session after the next one's start are replaced by the next one's):
+#   the horizontal ice load Fh = |(Fx, Fy)| and the largest line tension of
+#   each sample after the transient: mean, std (n - 1), max, P99 (linear
+#   interpolation, Hyndman & Fan type 7, as numpy); the 95 % interval of the
+#   mean by 20 batch means (as iceLoadStatistics); the force balance: the
+#   mean of (F + W) along the mean driving force D against |mean D|, with
+#   the batch-means half-width of (F + W - D).d / |mean D|.
+#   Speed: floe-steps per second and contacts per step from speed.txt.
+#   At the hull (bodies.dat at the write times after the transient): the
+#   mean number of floes whose centre is inside the waterline circle (35 m:
+#   under the hull), and of floes within 60 m of the axis whose top is
+#   below the water (pushed down the cone or under the hull), and of all
+#   floes within 60 m; the mean x velocity of all floes (packSpeedX: a
+#   jammed pack is at rest, a pack in free drift moves at about 0.4 m/s).
+# Across seeds (one row per thickness and concentration): the mean of each
+# statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
+# Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
+# DIR/forceBalance.png (with --convergence: DIR/convergence.csv and
+# DIR/convergence.png, the mean load against the domain's length and width).
+# -----------------------------------------------------------------------------
+import argparse
+import glob
+import math
+import os
+import sys
+
+import numpy as np
+
+# two-sided 95 % Student t quantiles t_{nu, 0.975}
+T975 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365,
+        8: 2.306, 9: 2.262, 10: 2.228, 15: 2.131, 19: 2.093, 20: 2.086, 29: 2.045}
+
+
+def t975(nu):
+    if nu in T975:
+        return T975[nu]
+    k = max(x for x in T975 if x <= nu)
+    return T975[k]
+
+
+BATCHES = 20
+WATERLINE_RADIUS = 35.0   # [m] the Kulluk's 70 m waterline (structureDict)
+NEAR_RADIUS = 60.0        # [m] around the axis: the cone and the ice at it
+
+
+def readParameters(d):
+    p = {}
+    for line in open(os.path.join(d, "parameters")):
+        k, v = line.split()
+        p[k] = v
+    return p
+
+
+def readSeries(d):
+    dirs = sorted(glob.glob(os.path.join(d, "postProcessing/iceLoadStatistics/*/series.dat")),
+                  key=lambda f: float(f.split("/")[-2]))
+    header, parts = None, []
+    for f in dirs:
+        names = None
+        rows = []
+        for line in open(f):
+            if line.startswith("# time"):
+                names = line[1:].split()
+            elif not line.startswith("#") and line.strip():
+                rows.append([float(x) for x in line.split()])
+        if rows:
+            header = names
+            parts.append(np.array(rows))
+    if not parts:
+        return None, None
+    out = []
+    for i, a in enumerate(parts):
+        if i + 1 < len(parts):
+            a = a[a[:, 0] <= parts[i + 1][0, 0] - 1e-9]
+        out.append(a)
+    return header, np.vstack(out)
+
+
+def batchHalfWidth(x, k=BATCHES):
+    n = len(x)
+    b = n // k
+    if b < 1:
+        return float("nan")
+    m = x[n - k*b:].reshape(k, b).mean(axis=1)
+    return t975(k - 1)*m.std(ddof=1)/math.sqrt(k)
+
+
+def stats(x):
+    return dict(mean=x.mean(), std=x.std(ddof=1), max=x.max(),
+                p99=np.percentile(x, 99), hw=batchHalfWidth(x))
+
+
+def hullCounts(d, tStart, floes):
+    """Mean over the write times after the transient of the floes (ids below
+    'floes': the structure's pieces follow them) whose centre is inside the
+    waterline circle (under the hull: only a submerged floe gets there), and
+    of the floes within NEAR_RADIUS of the axis whose top is below the water
+    (centre below -h/2: pushed down the cone or under the hull; a floating
+    floe's centre is at about -0.38 h)."""
+    f = os.path.join(d, "postProcessing/iceDEM/0/bodies.dat")
+    if not os.path.exists(f):
+        return float("nan"), float("nan"), float("nan"), float("nan")
+    h = float(readParameters(d)["thickness"])
+    under, down, near, vx = {}, {}, {}, []
+    for line in open(f):
+        if line.startswith("#"):
+            continue
+        v = line.split()
+        t, i = float(v[0]), int(v[1])
+        if t <= tStart or i >= floes:
+            continue
+        x, y, z = float(v[2]), float(v[3]), float(v[4])
+        vx.append(float(v[5]))
+        r = math.hypot(x, y)
+        under.setdefault(t, 0)
+        down.setdefault(t, 0)
+        near.setdefault(t, 0)
+        if r < NEAR_RADIUS:
+            near[t] += 1
+        if r < WATERLINE_RADIUS:
+            under[t] += 1
+        if r < NEAR_RADIUS and z < -0.5*h:
+            down[t] += 1
+    if not under:
+        return float("nan"), float("nan"), float("nan"), float("nan")
+    return (np.mean(list(under.values())), np.mean(list(down.values())),
+            np.mean(list(near.values())), np.mean(vx))
+
+
+def analyseRun(d, transient):
+    header, X = readSeries(d)
+    if X is None:
+        return None
+    c = {n: i for i, n in enumerate(header)}
+    steady = X[:, 0] > transient
+    if steady.sum() < 2*BATCHES:
+        return None
+    S = X[steady]
+    Fh = S[:, c["Fh"]]
+    T = S[:, [i for n, i in c.items() if ".T" in n]]
+    Tmax = T.max(axis=1) if T.shape[1] else np.zeros(len(S))
+    D = S[:, [c["Dx"], c["Dy"]]]
+    L = S[:, [c["Fx"], c["Fy"]]] + S[:, [c["Wx"], c["Wy"]]]
+    dm = D.mean(axis=0)
+    drive = np.hypot(*dm)
+    e = dm/drive
+    load = (L @ e).mean()
+    hwRatio = batchHalfWidth((L - D) @ e)/drive
+    p = readParameters(d)
+    r = dict(dir=os.path.basename(d), length=float(p["length"]), width=float(p["width"]),
+             thickness=float(p["thickness"]), concentration=float(p["concentration"]),
+             seed=int(p["seed"]), deltaT=float(p["deltaT"]), floeArea=float(p["floeArea"]),
+             steadyFrom=transient, steadyTo=S[-1, 0], samples=len(S))
+    for k, v in stats(Fh).items():
+        r["Fh_" + k] = v
+    for k, v in stats(Tmax).items():
+        r["Tmax_" + k] = v
+    r.update(load=load, drive=drive, ratio=load/drive, ratioHalfWidth=hwRatio)
+    sp = os.path.join(d, "speed.txt")
+    if os.path.exists(sp):
+        rows = [l.split() for l in open(sp) if not l.startswith("#")]
+        steps = sum(float(x[1]) for x in rows)
+        wall = sum(float(x[2]) for x in rows)
+        r["floes"] = int(rows[-1][0])
+        r["floeStepsPerSecond"] = int(rows[-1][0])*steps/wall if wall > 0 else float("nan")
+        r["contactsPerStep"] = float(np.mean([float(x[4]) for x in rows]))
+        r["wallTime"] = wall
+    floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
+                                    if l.split()[:1] == ["floes"]][-1])
+    r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"], r["packSpeedX"] = \
+        hullCounts(d, transient, floes)
+    return r
+
+
+def writeCsv(path, rows, keys):
+    with open(path, "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in rows:
+            f.write(",".join(("%.6g" % r[k]) if isinstance(r[k], float) else str(r[k])
+                             for k in keys) + "\n")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--dir", required=True)
+    ap.add_argument("--transient", type=float, default=300.0)
+    ap.add_argument("--convergence", action="store_true")
+    a = ap.parse_args()
+    runs = []
+    for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
+        if os.path.isfile(os.path.join(d, "done")):
+            r = analyseRun(d, a.transient)
+            if r is None:
+                print(f"plotStudy: {d}: too few steady samples, left out")
+            else:
+                runs.append(r)
+    if not runs:
+        print(f"plotStudy: no finished point in {a.dir}")
+        return 0
+    keys = list(runs[0].keys())
+    for r in runs:
+        for k in keys:
+            r.setdefault(k, float("nan"))
+    writeCsv(os.path.join(a.dir, "study_runs.csv"), runs, keys)
+    print(f"plotStudy: {len(runs)} finished runs -> {a.dir}/study_runs.csv")
+    print("run                      |Fh| mean +- hw [MN]   P99    max  | Tmax mean  P99 [MN] | "
+          "balance ratio +- hw | floe-steps/s contacts/step")
+    for r in runs:
+        print(f"{r['dir']:24s} {r['Fh_mean']/1e6:7.3f} +- {r['Fh_hw']/1e6:6.3f} "
+              f"{r['Fh_p99']/1e6:6.3f} {r['Fh_max']/1e6:6.3f} | {r['Tmax_mean']/1e6:6.3f} "
+              f"{r['Tmax_p99']/1e6:6.3f} | {r['ratio']:7.4f} +- {r['ratioHalfWidth']:6.4f} | "
+              f"{r.get('floeStepsPerSecond', float('nan')):9.0f} {r.get('contactsPerStep', float('nan')):8.1f}")
+
+    if a.convergence:
+        return convergence(a, runs)
+
+    # across seeds
+    groups = {}
+    for r in runs:
+        groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
+    agg = []
+    qs = ["Fh_mean", "Fh_std", "Fh_max", "Fh_p99", "Tmax_mean", "Tmax_std", "Tmax_max",
+          "Tmax_p99", "ratio"]
+    for (h, cc), rs in sorted(groups.items()):
+        row = dict(thickness=h, concentration=cc, seeds=len(rs))
+        for q in qs:
+            v = np.array([r[q] for r in rs])
+            row[q] = v.mean()
+            row[q + "_ci"] = t975(len(v) - 1)*v.std(ddof=1)/math.sqrt(len(v)) \
+                if len(v) > 1 else float("nan")
+        agg.append(row)
+    writeCsv(os.path.join(a.dir, "study.csv"), agg, list(agg[0].keys()))
+    print(f"plotStudy: {len(agg)} points -> {a.dir}/study.csv")
+    figures(a.dir, runs, agg)
+    return 0
+
+
+def figures(d, runs, agg):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    cs = sorted(set(r["concentration"] for r in agg))
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    panels = [("Fh_mean", "mean |F_h| [MN]", ax[0, 0]), ("Fh_p99", "P99 and max |F_h| [MN]", ax[0, 1]),
+              ("Tmax_mean", "mean largest line tension [MN]", ax[1, 0]),
+              ("Tmax_p99", "P99 and max of the largest line tension [MN]", ax[1, 1])]
+    for q, label, a_ in panels:
+        for c in cs:
+            rs = [r for r in agg if r["concentration"] == c]
+            h = [r["thickness"] for r in rs]
+            y = np.array([r[q] for r in rs])/1e6
+            e = np.nan_to_num(np.array([r[q + "_ci"] for r in rs])/1e6)
+            l = a_.errorbar(h, y, yerr=e, marker="o", capsize=3, label=f"c = {c*100:.0f} %")
+            if q.endswith("p99"):
+                m = np.array([r[q.replace("p99", "max")] for r in rs])/1e6
+                a_.plot(h, m, "x--", color=l[0].get_color(), alpha=0.6)
+        a_.set_xlabel("ice thickness h [m]")
+        a_.set_ylabel(label)
+        a_.grid(alpha=0.3)
+    ax[0, 0].axhline(1.0, color="k", ls=":", label="field: order 1 MN, managed broken ice")
+    ax[0, 1].axhline(1.0, color="k", ls=":")
+    for a_ in (ax[1, 0], ax[1, 1]):
+        a_.axhspan(5, 10, color="r", alpha=0.1, label="mooring capacity, order 5-10 MN")
+        a_.axhline(1.5, color="gray", ls="--", lw=0.8, label="pretension 1.5 MN (assumed)")
+    ax[0, 0].legend(fontsize=8)
+    ax[1, 0].legend(fontsize=8)
+    fig.suptitle("Kulluk in a periodic pack, design wind 55 km/h + current 0.3 m/s, DEM only; "
+                 "error bars: 95 % CI across seeds; x: max", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "study.png"), dpi=110)
+    plt.close(fig)
+
+    fig, a_ = plt.subplots(figsize=(10, 4))
+    x = np.arange(len(runs))
+    a_.errorbar(x, [r["ratio"] for r in runs], yerr=[r["ratioHalfWidth"] for r in runs],
+                fmt="o", capsize=3)
+    a_.axhline(1, color="k", lw=0.8)
+    a_.axhspan(0.95, 1.05, color="g", alpha=0.1, label="within 5 %")
+    a_.set_xticks(x)
+    a_.set_xticklabels([r["dir"] for r in runs], rotation=70, fontsize=7)
+    a_.set_ylabel("mean hull load / mean driving force")
+    a_.set_title("Force balance of every run (95 % batch-means interval)")
+    a_.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(d, "forceBalance.png"), dpi=110)
+    plt.close(fig)
+    print(f"plotStudy: {d}/study.png, {d}/forceBalance.png")
+
+
+def convergence(a, runs):
+    keys = ["dir", "length", "width", "deltaT", "seed", "floes", "Fh_mean", "Fh_hw", "Fh_std",
+            "Fh_p99", "Fh_max", "Tmax_mean", "drive", "ratio", "ratioHalfWidth", "packSpeedX",
+            "floesUnderHull", "floesPushedDown", "floesNearHull",
+            "floeStepsPerSecond", "contactsPerStep", "wallTime"]
+    for r in runs:
+        for k in keys:
+            r.setdefault(k, float("nan"))
+    writeCsv(os.path.join(a.dir, "convergence.csv"), runs, keys)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    for r in runs:
+        lab = f"dt {r['deltaT']:g}, seed {r['seed']}"
+        ax[0].errorbar(r["length"], r["Fh_mean"]/1e6, yerr=r["Fh_hw"]/1e6, fmt="o", capsize=3)
+        ax[0].annotate(f"W {r['width']:.0f}\n{lab}", (r["length"], r["Fh_mean"]/1e6), fontsize=6)
+        ax[1].errorbar(r["width"], r["Fh_mean"]/1e6, yerr=r["Fh_hw"]/1e6, fmt="o", capsize=3)
+        ax[1].annotate(f"L {r['length']:.0f}\n{lab}", (r["width"], r["Fh_mean"]/1e6), fontsize=6)
+    ax[0].set_xlabel("periodic length along the drift L [m]")
+    ax[1].set_xlabel("periodic width across the drift W [m]")
+    for a_ in ax:
+        a_.set_ylabel("mean |F_h| [MN] (95 % batch-means CI)")
+        a_.grid(alpha=0.3)
+    fig.suptitle("Domain convergence at the design point (1.2 m, 80 %), design wind + current")
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.dir, "convergence.png"), dpi=110)
+    print(f"plotStudy: {a.dir}/convergence.csv, {a.dir}/convergence.png")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
