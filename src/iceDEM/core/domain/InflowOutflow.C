@@ -77,6 +77,7 @@ void InflowOutflow::update(World& world)
             if (bodies[i].isFree() && along(bodies[i].x) > settings_.downstream)
             {
                 remove[i] = true;
+                inserted_.erase(bodies[i].id);
                 ++n;
             }
         }
@@ -127,16 +128,44 @@ void InflowOutflow::update(World& world)
         for (const Floe& floe : floes)
         {
             const int shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+            const int id = int(nextId_++);
             world.insertBodyInRun
             (
                 shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity,
-                Vec3::Zero(), int(nextId_++)
+                Vec3::Zero(), id
             );
+            inserted_[id] = floe;
         }
         floesIn_ += static_cast<long>(floes.size());
         ++strips_;
         g = s0;
     }
+}
+
+
+void InflowOutflow::restore(const InflowOutflowState& s, std::map<int, Floe> floes)
+{
+    if (!(s.floesIn >= 0 && s.floesOut >= 0 && s.strips >= 0))
+    {
+        throw Error("negative inflow/outflow counts in the state", "inflowOutflow");
+    }
+    floesIn_ = s.floesIn;
+    floesOut_ = s.floesOut;
+    strips_ = s.strips;
+    nextId_ = s.nextId;
+    lastUpdate_ = s.lastUpdate;
+    inserted_ = std::move(floes);
+}
+
+
+int InflowOutflow::addInsertedBody(World& world, int id, const Floe& floe) const
+{
+    const int shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+    return world.addBody
+    (
+        shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity,
+        Vec3::Zero(), BodyMotion::free, id
+    );
 }
 
 

@@ -573,10 +573,17 @@ void Foam::iceDEMCase::start()
 {
     state_.reset(new iceDEMState(runTime_, *this));
 
-    if (state_->found() && inflow_)
+    // Names by id before a restart changes the set of bodies
+    if (inflow_)
     {
-        restarted_ = true;
-        startInflowOutflow();   // stops: no restart with inflow yet
+        const auto& bodies = world_->bodies();
+        forAll(bodyNames_, i)
+        {
+            if (i < label(bodies.size()))
+            {
+                idName_.set(bodies[i].id, bodyNames_[i]);
+            }
+        }
     }
     if (state_->found())
     {

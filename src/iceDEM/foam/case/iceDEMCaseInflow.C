@@ -361,22 +361,9 @@ void Foam::iceDEMCase::startInflowOutflow()
     {
         return;
     }
-    if (restarted_)
-    {
-        FatalIOErrorInFunction(properties_)
-            << "Entry 'domain' (type inflowOutflow): a restart with inflow is"
-            << " not available yet (the inserted floes are not in the DEM"
-            << " state); start from time 0" << nl << exit(FatalIOError);
-    }
-    const auto& bodies = world_->bodies();
-    forAll(bodyNames_, i)
-    {
-        if (i < label(bodies.size()))
-        {
-            idName_.set(bodies[i].id, bodyNames_[i]);
-        }
-    }
-
+    const ::iceDEM::InflowOutflowState st = inflow_->state();
+    inflowLoggedIn_ = st.floesIn;
+    inflowLoggedOut_ = st.floesOut;
     if (Pstream::master())
     {
         const fileName dir =
