@@ -77,7 +77,10 @@ void InflowOutflow::update(World& world)
             if (bodies[i].isFree() && along(bodies[i].x) > settings_.downstream)
             {
                 remove[i] = true;
-                inserted_.erase(bodies[i].id);
+                if (inserted_.erase(bodies[i].id) > 0)
+                {
+                    freeShapes_.push_back(bodies[i].shape);
+                }
                 ++n;
             }
         }
@@ -127,7 +130,17 @@ void InflowOutflow::update(World& world)
         const std::vector<Floe> floes = generateVoronoiField(f, report);
         for (const Floe& floe : floes)
         {
-            const int shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+            int shape;
+            if (freeShapes_.empty())
+            {
+                shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+            }
+            else
+            {
+                shape = freeShapes_.back();
+                freeShapes_.pop_back();
+                world.replaceShape(shape, DilatedShape(floe.core(), floe.radius));
+            }
             const int id = int(nextId_++);
             world.insertBodyInRun
             (
