@@ -377,7 +377,7 @@ void Foam::iceDEMCase::startInflowOutflow()
         os.precision(12);
         os  << "# inflow/outflow: floes in (inserted upstream), out (removed"
             << " downstream), free floes in the domain, plan-area"
-            << " concentration of the upstream strip" << nl
+            << " concentration in the window" << nl
             << "# time in out floes upstreamConcentration" << nl;
     }
     writeInflowOutflow();
