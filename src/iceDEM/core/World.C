@@ -99,6 +99,27 @@ int World::addShape(const DilatedShape& s)
 }
 
 
+void World::replaceShape(int index, const DilatedShape& s)
+{
+    if (index < 0 || index >= int(shapes_.size()))
+    {
+        throw Error("replaceShape: no shape " + std::to_string(index), "shape");
+    }
+    for (const Body& b : bodies_)
+    {
+        if (b.shape == index)
+        {
+            throw Error("replaceShape: shape " + std::to_string(index) + " is in use", "shape");
+        }
+    }
+    if (int(s.core().vertices().size()) > maxShapeVertices)
+    {
+        throw Error("a shape has too many core vertices", "points");
+    }
+    shapes_[index] = s;
+}
+
+
 int World::addBody
 (
     int shape,

@@ -38,6 +38,19 @@ InflowOutflow::InflowOutflow(const InflowOutflowSettings& s)
     {
         throw Error("the inflow concentration must be in (0, 1]", "concentration");
     }
+    if (std::isnan(settings_.windowLo))
+    {
+        settings_.windowLo = s.upstream + s.stripWidth;
+        settings_.windowHi = std::min(s.downstream, s.upstream + 2*s.stripWidth);
+    }
+    if
+    (
+        !(std::isfinite(settings_.windowLo) && std::isfinite(settings_.windowHi))
+     || !(settings_.windowHi > settings_.windowLo)
+    )
+    {
+        throw Error("the concentration window needs finite lo < hi along the drift", "window");
+    }
 }
 
 
@@ -48,6 +61,11 @@ void InflowOutflow::update(World& world)
         return;
     }
     lastUpdate_ = world.time();
+    if (nextId_ < 0)
+    {
+        nextId_ = 0;
+        for (const Body& b : world.bodies()) nextId_ = std::max(nextId_, long(b.id) + 1);
+    }
 
     // Outflow
     {
@@ -59,6 +77,10 @@ void InflowOutflow::update(World& world)
             if (bodies[i].isFree() && along(bodies[i].x) > settings_.downstream)
             {
                 remove[i] = true;
+                if (inserted_.erase(bodies[i].id) > 0)
+                {
+                    freeShapes_.push_back(bodies[i].shape);
+                }
                 ++n;
             }
         }
@@ -108,13 +130,90 @@ void InflowOutflow::update(World& world)
         const std::vector<Floe> floes = generateVoronoiField(f, report);
         for (const Floe& floe : floes)
         {
-            const int shape = world.addShape(DilatedShape(floe.core(), floe.radius));
-            world.insertBodyInRun(shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity);
+            int shape;
+            if (freeShapes_.empty())
+            {
+                shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+            }
+            else
+            {
+                shape = freeShapes_.back();
+                freeShapes_.pop_back();
+                world.replaceShape(shape, DilatedShape(floe.core(), floe.radius));
+            }
+            const int id = int(nextId_++);
+            world.insertBodyInRun
+            (
+                shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity,
+                Vec3::Zero(), id
+            );
+            inserted_[id] = floe;
         }
         floesIn_ += static_cast<long>(floes.size());
         ++strips_;
         g = s0;
     }
+}
+
+
+void InflowOutflow::restore(const InflowOutflowState& s, std::map<int, Floe> floes)
+{
+    if (!(s.floesIn >= 0 && s.floesOut >= 0 && s.strips >= 0))
+    {
+        throw Error("negative inflow/outflow counts in the state", "inflowOutflow");
+    }
+    floesIn_ = s.floesIn;
+    floesOut_ = s.floesOut;
+    strips_ = s.strips;
+    nextId_ = s.nextId;
+    lastUpdate_ = s.lastUpdate;
+    inserted_ = std::move(floes);
+}
+
+
+int InflowOutflow::addInsertedBody(World& world, int id, const Floe& floe) const
+{
+    const int shape = world.addShape(DilatedShape(floe.core(), floe.radius));
+    return world.addBody
+    (
+        shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity,
+        Vec3::Zero(), BodyMotion::free, id
+    );
+}
+
+
+double InflowOutflow::upstreamConcentration(const World& world) const
+{
+    const int a = settings_.axis;
+    const VoronoiFieldSettings& f = settings_.field;
+    const double latLo = a == 0 ? f.ymin : f.xmin;
+    const double latHi = a == 0 ? f.ymax : f.xmax;
+    const double s0 = settings_.windowLo;
+    const double s1 = settings_.windowHi;
+    const std::vector<Body>& bodies = world.bodies();
+    double area = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        const Body& b = bodies[i];
+        if (!b.isFree()) continue;
+        const double s = along(b.x);
+        const double l = b.x[1 - a];
+        if (s < s0 || s >= s1 || l < latLo || l >= latHi) continue;
+        const DilatedShape& S = world.shapeOf(int(i));
+        double zLo = std::numeric_limits<double>::max();
+        double zHi = -zLo;
+        for (const Vec3& v : S.core().vertices())
+        {
+            // Height along the body's vertical: prisms stay upright in the
+            // input frame; the core's extent along the rotated z axis
+            const double z = (b.rotation()*v)[2];
+            zLo = std::min(zLo, z);
+            zHi = std::max(zHi, z);
+        }
+        const double h = zHi - zLo + 2*S.radius();
+        if (h > 0) area += S.facetedVolume()/h;
+    }
+    return area/((s1 - s0)*(latHi - latLo));
 }
 
 } // namespace iceDEM

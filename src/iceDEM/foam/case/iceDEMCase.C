@@ -468,7 +468,15 @@ void Foam::iceDEMCase::setPrescribed(scalar t)
                 )*p.q0;
             q.normalize();
         }
-        world_->setPrescribedState(p.index, x, q, p.v, p.omega);
+        label index = p.index;
+        if (inflow_)
+        {
+            // Removed floes move the indices down: follow the id
+            const auto& bodies = world_->bodies();
+            index = std::min(index, label(bodies.size()) - 1);
+            while (index > 0 && bodies[index].id != p.id) --index;
+        }
+        world_->setPrescribedState(index, x, q, p.v, p.omega);
     }
 }
 
@@ -603,6 +611,13 @@ Foam::word Foam::iceDEMCase::name(label i) const
         return
             w < wallNames_.size() ? wallNames_[w] : word("wall" + Foam::name(w));
     }
+    if (inflow_ && i < label(world_->bodies().size()))
+    {
+        // Indices move with inflow/outflow; ids do not
+        const label id = world_->bodies()[i].id;
+        const auto iter = idName_.cfind(id);
+        return iter.found() ? *iter : word("inflow" + Foam::name(id));
+    }
     return
         i < bodyNames_.size() ? bodyNames_[i] : word("body" + Foam::name(i));
 }
@@ -623,6 +638,16 @@ void Foam::iceDEMCase::appendBodyName(const word& name)
             << bodyNames_.size() << " of " << world_->bodies().size()
             << ": name every added body right after adding it" << nl
             << exit(FatalError);
+    }
+    if (inflow_)
+    {
+        // The coupled solvers keep the indices of the bodies they add,
+        // which inflow/outflow moves
+        FatalIOErrorInFunction(properties_)
+            << "Entry 'domain' (type inflowOutflow): not available yet with"
+            << " bodies added by the solver (body " << name << "; e.g. the"
+            << " structure of iceFloatingFoam); use iceDEMFoam" << nl
+            << exit(FatalIOError);
     }
     bodyNames_.append(name);
 }
@@ -657,6 +682,18 @@ void Foam::iceDEMCase::start()
 {
     state_.reset(new iceDEMState(runTime_, *this));
 
+    // Names by id before a restart changes the set of bodies
+    if (inflow_)
+    {
+        const auto& bodies = world_->bodies();
+        forAll(bodyNames_, i)
+        {
+            if (i < label(bodies.size()))
+            {
+                idName_.set(bodies[i].id, bodyNames_[i]);
+            }
+        }
+    }
     if (state_->found())
     {
         state_->apply(*world_);
@@ -685,6 +722,7 @@ void Foam::iceDEMCase::start()
             {
                 prescribedBody p;
                 p.index = i;
+                p.id = b.id;
                 p.x0 = b.x;
                 p.q0 = b.q;
                 p.v = b.v;
@@ -742,6 +780,7 @@ void Foam::iceDEMCase::start()
         IOWarningInFunction(properties_)
             << msg.c_str() << nl << endl;
     }
+    startInflowOutflow();
 }
 
 
@@ -810,6 +849,7 @@ void Foam::iceDEMCase::advanceTo(scalar t)
         }
         w.setTime(t);
         w.checkFinite();
+        writeInflowOutflow();
     }
     catch (const std::exception& err)
     {

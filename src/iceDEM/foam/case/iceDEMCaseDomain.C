@@ -4,13 +4,14 @@
 
 Description
     The domain sub-dictionary of constant/iceDEMProperties: periodic
-    boundaries in x and/or y (core/domain/Domain). Its size checks against
+    boundaries in x and/or y (core/domain/Domain), or inflow/outflow
+    (core/domain/InflowOutflow, read in iceDEMCaseInflow.C). Its size checks against
     the floes and the structure run when the DEM starts (World::initialise)
     and stop with a FatalIOError on this entry.
 
         domain
         {
-            type    periodic;       // none | periodic
+            type    periodic;       // none | periodic | inflowOutflow
             x       (0 1000);       // periodic in x over [xmin, xmax)
             y       (-200 200);     // and/or in y
         }
@@ -38,12 +39,18 @@ void Foam::iceDEMCase::readDomain()
         FatalIOErrorInFunction(properties_)
             << "Entry 'domain' of constant/iceDEMProperties must be a"
             << " dictionary { type periodic; x (xmin xmax); y (ymin ymax); }"
+            << " or { type inflowOutflow; ... } (doc/caseFiles.md)"
             << nl << exit(FatalIOError);
     }
     const dictionary& d = properties_.subDict("domain");
+    const word type =
+        selectName(d, "type", wordList{"none", "periodic", "inflowOutflow"});
+    if (type == "inflowOutflow")
+    {
+        readInflowOutflow(d);
+        return;
+    }
     checkKeywords(d, {"type", "x", "y"}, "domain");
-
-    const word type = selectName(d, "type", wordList{"none", "periodic"});
     if (type == "none")
     {
         return;

@@ -8,6 +8,8 @@
 #include "dictionaryChecks.H"
 #include "completeTime.H"
 
+#include "domain/InflowOutflow.H"
+
 #include "FixedList.H"
 #include "vectorList.H"
 
@@ -95,6 +97,11 @@ bool Foam::iceDEMState::readData(Istream& is)
 
 void Foam::iceDEMState::apply(::iceDEM::World& world) const
 {
+    if (case_.inflowOutflow())
+    {
+        applyInflowOutflow(world);
+    }
+
     const dictionary& d = dict_;
     auto& bodies = world.bodies();
     const label n = label(bodies.size());
@@ -207,6 +214,137 @@ void Foam::iceDEMState::apply(::iceDEM::World& world) const
 }
 
 
+void Foam::iceDEMState::applyInflowOutflow(::iceDEM::World& world) const
+{
+    if (!dict_.isDict("inflowOutflow"))
+    {
+        FatalIOErrorInFunction(dict_)
+            << "No entry 'inflowOutflow' in the DEM state, but constant/"
+            << "iceDEMProperties has domain type inflowOutflow: the state was"
+            << " written without inflow (start from time 0, or remove the"
+            << " domain entry)" << nl << exit(FatalIOError);
+    }
+    const dictionary& d = dict_.subDict("inflowOutflow");
+    ::iceDEM::InflowOutflow& io = *case_.inflow();
+
+    ::iceDEM::InflowOutflowState s;
+    s.floesIn = integerOf(d, "floesIn", d.get<scalar>("floesIn"), 0, 1LL << 52);
+    s.floesOut = integerOf(d, "floesOut", d.get<scalar>("floesOut"), 0, 1LL << 52);
+    s.strips = integerOf(d, "strips", d.get<scalar>("strips"), 0, 1LL << 52);
+    s.nextId = integerOf(d, "nextId", d.get<scalar>("nextId"), -1, 1LL << 31);
+    s.lastUpdate = d.get<scalar>("lastUpdate");
+
+    // The inserted floes: (id zBottom thickness radius x0 y0 x1 y1 ...)
+    const List<scalarList> rows(d.get<List<scalarList>>("floes"));
+    std::map<int, ::iceDEM::Floe> floes;
+    for (const scalarList& r : rows)
+    {
+        if (r.size() < 10 || r.size() % 2 != 0)
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'floes': a floe is (id zBottom thickness radius"
+                << " x0 y0 x1 y1 x2 y2 ...); got " << r.size() << " numbers"
+                << nl << exit(FatalIOError);
+        }
+        ::iceDEM::Floe f;
+        const int id = int(integerOf(d, "floes", r[0], 0, 1LL << 31));
+        f.zBottom = r[1];
+        f.thickness = r[2];
+        f.radius = r[3];
+        for (label k = 4; k < r.size(); k += 2)
+        {
+            f.outline.push_back(::iceDEM::Vec2(r[k], r[k + 1]));
+        }
+        floes[id] = f;
+    }
+
+    // The world's bodies: those of the state (by id, in its order): the
+    // initial bodies still there, then the inserted floes
+    const labelList ids(d.get<labelList>("ids"));
+    std::map<label, label> order;
+    forAll(ids, k)
+    {
+        order[ids[k]] = k;
+    }
+    const auto& bodies = world.bodies();
+    std::vector<bool> remove(bodies.size(), false);
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        remove[i] = order.count(bodies[i].id) == 0;
+    }
+    coreCall(d, "ids", [&]{ world.removeBodies(remove); });
+    for (label k = label(world.bodies().size()); k < ids.size(); ++k)
+    {
+        const auto f = floes.find(int(ids[k]));
+        if (f == floes.end())
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'ids': body id " << ids[k] << " is neither in the"
+                << " case nor among the inserted 'floes'" << nl
+                << exit(FatalIOError);
+        }
+        coreCall
+        (
+            d, "floes",
+            [&]{ io.addInsertedBody(world, int(ids[k]), f->second); }
+        );
+    }
+    forAll(ids, k)
+    {
+        if (k >= label(world.bodies().size()) || world.bodies()[k].id != ids[k])
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'ids': body " << k << " has id " << ids[k]
+                << " in the state, not in the rebuilt world" << nl
+                << exit(FatalIOError);
+        }
+    }
+    coreCall(d, "inflowOutflow", [&]{ io.restore(s, std::move(floes)); });
+}
+
+
+void Foam::iceDEMState::writeInflowOutflow(Ostream& os) const
+{
+    const ::iceDEM::World& w = case_.world();
+    const ::iceDEM::InflowOutflow& io = *case_.inflow();
+    const ::iceDEM::InflowOutflowState s = io.state();
+
+    os.beginBlock("inflowOutflow");
+    os.writeEntry("floesIn", scalar(s.floesIn));
+    os.writeEntry("floesOut", scalar(s.floesOut));
+    os.writeEntry("strips", scalar(s.strips));
+    os.writeEntry("nextId", scalar(s.nextId));
+    os.writeEntry("lastUpdate", s.lastUpdate);
+
+    labelList ids(w.bodies().size());
+    forAll(ids, i)
+    {
+        ids[i] = w.bodies()[i].id;
+    }
+    os.writeEntry("ids", ids);
+
+    List<scalarList> rows(io.insertedFloes().size());
+    label k = 0;
+    for (const auto& idFloe : io.insertedFloes())
+    {
+        const ::iceDEM::Floe& f = idFloe.second;
+        scalarList& r = rows[k++];
+        r.setSize(4 + 2*f.outline.size());
+        r[0] = idFloe.first;
+        r[1] = f.zBottom;
+        r[2] = f.thickness;
+        r[3] = f.radius;
+        for (std::size_t j = 0; j < f.outline.size(); ++j)
+        {
+            r[4 + 2*j] = f.outline[j].x();
+            r[5 + 2*j] = f.outline[j].y();
+        }
+    }
+    os.writeEntry("floes", rows);
+    os.endBlock();
+}
+
+
 bool Foam::iceDEMState::writeObject
 (
     IOstream::streamFormat,
@@ -272,6 +410,11 @@ bool Foam::iceDEMState::writeData(Ostream& os) const
     }
     os.writeEntry("contacts", c);
     os.writeEntry("contactSprings", xi);
+
+    if (case_.inflowOutflow())
+    {
+        writeInflowOutflow(os);
+    }
 
     if (!case_.couplingState().empty())
     {
