@@ -36,6 +36,37 @@ namespace
     //  scatter matrix) below this fraction of the largest count as none
     //  (round-off of points that lie in one plane)
     constexpr double relativeSpreadCutoff = 1e-9;
+
+    //- A boolean entry (true/false, on/off, yes/no); FatalIOError naming
+    //  the entry for anything else
+    bool readSwitch(const Foam::dictionary& dict, const Foam::word& key, bool deflt)
+    {
+        using namespace Foam;
+        const entry* e = dict.findEntry(key, keyType::LITERAL);
+        if (!e)
+        {
+            return deflt;
+        }
+        ITstream& is = e->stream();
+        const token t(is);
+        if (t.isWord() && is.nRemainingTokens() == 0)
+        {
+            const Switch sw(t.wordToken(), true);
+            if (sw.valid())
+            {
+                return bool(sw);
+            }
+        }
+        if (t.isBool() && is.nRemainingTokens() == 0)
+        {
+            return t.boolToken();
+        }
+        FatalIOErrorInFunction(dict)
+            << "Entry '" << key << "' must be a boolean (true or false),"
+            << " not '" << e->stream() << "'" << nl
+            << exit(FatalIOError);
+        return deflt;
+    }
 }
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
@@ -62,8 +93,10 @@ Foam::resolvedFlowVelocity::resolvedFlowVelocity
     Ucurrent_(nullptr),
     world_(nullptr),
     treeBuilt_(false),
+    twoWay_(false),
     unprepared_(0)
 {
+    twoWay_ = readSwitch(dragDict, "twoWay", false);
     if (!mesh_.foundObject<volVectorField>(UName_))
     {
         FatalIOErrorInFunction(dragDict)
@@ -237,7 +270,8 @@ void Foam::resolvedFlowVelocity::samplePoints
     const ::iceDEM::Drag& drag,
     int i,
     std::vector<::iceDEM::Vec3>& points,
-    std::vector<int>& faces
+    std::vector<int>& faces,
+    std::vector<double>& pointAreas
 ) const
 {
     // The traversal of iceDEM::Drag::bodyDrag (same order, same arithmetic)
@@ -245,6 +279,7 @@ void Foam::resolvedFlowVelocity::samplePoints
 
     points.clear();
     faces.clear();
+    pointAreas.clear();
 
     const ::iceDEM::Body& b = world.bodies()[i];
     static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
@@ -293,6 +328,7 @@ void Foam::resolvedFlowVelocity::samplePoints
                 ::iceDEM::faceTriangleSamples(face, k, s.subdivision, pts, areas);
             points.insert(points.end(), pts, pts + m);
             faces.insert(faces.end(), m, f);
+            pointAreas.insert(pointAreas.end(), areas, areas + m);
         }
     }
 }
@@ -376,6 +412,9 @@ void Foam::resolvedFlowVelocity::sampleAll
         found_.assign(N, {});
         cursor_.assign(N, 0);
         sampled_.assign(N, 0);
+        areas_.assign(N, {});
+        cells_.assign(N, {});
+        hits_.assign(N, {});
     }
 
     // 1.-2. Sample points and local interpolation, per body
@@ -392,11 +431,13 @@ void Foam::resolvedFlowVelocity::sampleAll
             continue;
         }
         sampled_[i] = 1;
-        samplePoints(world, drag, i, pts, pointFaces_[i]);
+        samplePoints(world, drag, i, pts, pointFaces_[i], areas_[i]);
 
         const size_t n = pts.size();
         values_[i].resize(n);
         found_[i].resize(n);
+        cells_[i].resize(n);
+        hits_[i].resize(n);
         label hint = hint_[i];
         for (size_t k = 0; k < n; ++k)
         {
@@ -407,12 +448,16 @@ void Foam::resolvedFlowVelocity::sampleAll
                 const vector u = interpolate(p, celli);
                 values_[i][k] = ::iceDEM::Vec3(u.x(), u.y(), u.z());
                 found_[i][k] = 1;
+                cells_[i][k] = celli;
+                hits_[i][k] = 1;
                 hint = celli;
             }
             else
             {
                 values_[i][k].setZero();
                 found_[i][k] = 0;
+                cells_[i][k] = -1;
+                hits_[i][k] = 0;
             }
         }
         hint_[i] = hint;
@@ -460,6 +505,7 @@ void Foam::resolvedFlowVelocity::sampleAll
             for (size_t k = 0; k < points_[i].size(); ++k)
             {
                 const scalar hits = buf[m + 3];
+                hits_[i][k] = label(hits + 0.5);
                 if (hits > 0)
                 {
                     values_[i][k] =
@@ -560,6 +606,11 @@ void Foam::resolvedFlowVelocity::prepare
         FatalErrorInFunction
             << "resolved drag: update() was not called before the DEM step"
             << nl << exit(FatalError);
+    }
+    if (twoWay_ && faceDrag_.size() != world.bodies().size())
+    {
+        // Serial, before the threads of the force evaluation
+        faceDrag_.resize(world.bodies().size());
     }
     if (!samplePerDemStep_ && sampledThisStep_)
     {
@@ -742,6 +793,194 @@ void Foam::resolvedFlowVelocity::velocity
         else
         {
             u[k] = far;
+        }
+    }
+}
+
+
+void Foam::resolvedFlowVelocity::faceForces
+(
+    int body,
+    int nFaces,
+    const ::iceDEM::Vec3* F,
+    const double* K
+) const
+{
+    // Only the thread that owns 'body' writes faceDrag_[body]; the list of
+    // bodies is sized in accumulate() (serial), or here by a new body count
+    if (body < 0 || size_t(body) >= faceDrag_.size())
+    {
+        return;     // sized at the next accumulate(); see there
+    }
+    std::vector<faceDrag>& fd = faceDrag_[body];
+    if (int(fd.size()) < nFaces)
+    {
+        fd.resize(nFaces);      // once per body
+    }
+    for (size_t f = 0; f < fd.size(); ++f)
+    {
+        faceDrag& d = fd[f];
+        d.Fold = d.Fnew;
+        d.Kold = d.Knew;
+        if (int(f) < nFaces)
+        {
+            d.Fnew = F[f];
+            d.Knew = K[f];
+        }
+        else
+        {
+            d.Fnew.setZero();
+            d.Knew = 0;
+        }
+    }
+}
+
+
+void Foam::resolvedFlowVelocity::accumulate(scalar dt)
+{
+    for (std::vector<faceDrag>& fd : faceDrag_)
+    {
+        for (faceDrag& d : fd)
+        {
+            // Velocity Verlet: half a kick with the old force, half with
+            // the new one
+            d.J += (0.5*dt)*(d.Fold + d.Fnew);
+            d.KT += 0.5*dt*(d.Kold + d.Knew);
+        }
+    }
+}
+
+
+::iceDEM::Vec3 Foam::resolvedFlowVelocity::deposit
+(
+    vectorField& reactionImpulse,
+    scalarField& KIntegral,
+    ::iceDEM::Vec3& lost
+)
+{
+    ::iceDEM::Vec3 total = ::iceDEM::Vec3::Zero();
+    lost.setZero();
+
+    const size_t N = faceDrag_.size();
+    for (size_t i = 0; i < N; ++i)
+    {
+        std::vector<faceDrag>& fd = faceDrag_[i];
+        const bool sampled = i < points_.size() && sampled_[i];
+        const size_t n = sampled ? points_[i].size() : 0;
+
+        // Area of the found points of each face and of the whole floe
+        // (found by any processor: the same on all)
+        double floeArea = 0;
+        for (size_t k = 0; k < n; ++k)
+        {
+            if (hits_[i][k] > 0) floeArea += areas_[i][k];
+        }
+
+        for (size_t f = 0; f < fd.size(); ++f)
+        {
+            faceDrag& d = fd[f];
+            if (d.J.squaredNorm() == 0 && d.KT == 0)
+            {
+                continue;
+            }
+            total += d.J;
+
+            double faceArea = 0;
+            for (size_t k = 0; k < n; ++k)
+            {
+                if (pointFaces_[i][k] == int(f) && hits_[i][k] > 0)
+                {
+                    faceArea += areas_[i][k];
+                }
+            }
+            // A face dry (or outside the mesh) at the sampling: the floe's
+            // points take its drag
+            const bool ownFace = faceArea > 0;
+            const double area = ownFace ? faceArea : floeArea;
+            if (!(area > 0))
+            {
+                lost += d.J;
+            }
+            else
+            {
+                for (size_t k = 0; k < n; ++k)
+                {
+                    const label celli = cells_[i][k];
+                    if
+                    (
+                        celli < 0
+                     || (ownFace && pointFaces_[i][k] != int(f))
+                    )
+                    {
+                        continue;
+                    }
+                    const double w = areas_[i][k]/(area*hits_[i][k]);
+                    const ::iceDEM::Vec3 dJ = -w*d.J;
+                    reactionImpulse[celli] += vector(dJ.x(), dJ.y(), dJ.z());
+                    KIntegral[celli] += w*d.KT;
+                }
+            }
+            d.J.setZero();
+            d.KT = 0;
+        }
+    }
+    return total;
+}
+
+
+void Foam::resolvedFlowVelocity::getFaceDrag
+(
+    labelList& nFaces,
+    List<vector>& F,
+    List<scalar>& K
+) const
+{
+    nFaces.setSize(faceDrag_.size());
+    label m = 0;
+    forAll(nFaces, i)
+    {
+        nFaces[i] = label(faceDrag_[i].size());
+        m += nFaces[i];
+    }
+    F.setSize(m);
+    K.setSize(m);
+    m = 0;
+    for (const std::vector<faceDrag>& fd : faceDrag_)
+    {
+        for (const faceDrag& d : fd)
+        {
+            F[m] = vector(d.Fnew.x(), d.Fnew.y(), d.Fnew.z());
+            K[m] = d.Knew;
+            ++m;
+        }
+    }
+}
+
+
+void Foam::resolvedFlowVelocity::setFaceDrag
+(
+    const labelList& nFaces,
+    const List<vector>& F,
+    const List<scalar>& K
+)
+{
+    faceDrag_.assign(nFaces.size(), {});
+    label m = 0;
+    forAll(nFaces, i)
+    {
+        faceDrag_[i].resize(nFaces[i]);
+        for (faceDrag& d : faceDrag_[i])
+        {
+            if (m >= F.size() || m >= K.size())
+            {
+                FatalErrorInFunction
+                    << "two-way drag state: " << F.size() << " face forces"
+                    << " for " << sum(nFaces) << " faces" << nl
+                    << exit(FatalError);
+            }
+            d.Fnew = ::iceDEM::Vec3(F[m].x(), F[m].y(), F[m].z());
+            d.Knew = K[m];
+            ++m;
         }
     }
 }
