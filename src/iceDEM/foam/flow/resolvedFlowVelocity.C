@@ -62,9 +62,17 @@ namespace
             return t.boolToken();
         }
         FatalIOErrorInFunction(dict)
-            << "Entry '" << key << "' must be a boolean (true or false),"
-            << " not '" << e->stream() << "'" << nl
-            << exit(FatalIOError);
+            << "Entry '" << key << "' must be a boolean (true or false,"
+            << " on or off, yes or no), not ";
+        if (is.size() == 1)
+        {
+            FatalIOError << "'" << t << "'";
+        }
+        else
+        {
+            FatalIOError << is.size() << " tokens";
+        }
+        FatalIOError << nl << exit(FatalIOError);
         return deflt;
     }
 }
