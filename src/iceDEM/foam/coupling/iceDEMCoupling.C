@@ -749,7 +749,7 @@ void Foam::iceDEMCoupling::solve()
 
     if (reaction_)
     {
-        // The deferred correction of the implicit part of the flow step
+        // The impulse the implicit part gave the flow in the flow step
         reaction_->correct();
     }
     if (flow_)
@@ -925,6 +925,21 @@ Foam::tmp<Foam::fvVectorMatrix> Foam::iceDEMCoupling::momentumSource
             << exit(FatalError);
     }
     return reaction_->source(U);
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::iceDEMCoupling::explicitMomentumSource
+(
+    const volVectorField& U
+) const
+{
+    if (!reaction_)
+    {
+        FatalErrorInFunction
+            << "explicitMomentumSource() without two-way coupling" << nl
+            << exit(FatalError);
+    }
+    return reaction_->explicitSource(U);
 }
 
 

@@ -50,27 +50,14 @@ Foam::iceDragReaction::iceDragReaction
         dimensionedScalar(dimless/dimTime, Zero),
         calculatedFvPatchField<scalar>::typeName
     ),
-    correction_
-    (
-        IOobject
-        (
-            "iceDragCorrection",
-            mesh.time().timeName(),
-            mesh,
-            IOobject::READ_IF_PRESENT,
-            IOobject::AUTO_WRITE
-        ),
-        mesh,
-        dimensionedVector(dimVelocity/dimTime, Zero),
-        calculatedFvPatchField<vector>::typeName
-    ),
     floeImpulse_(Zero),
     fluidImpulse_(Zero),
-    lostImpulse_(Zero)
+    lostImpulse_(Zero),
+    implicitImpulse_(Zero)
 {
     Info<< "iceDEM: two-way drag coupling: the floes' drag returns to "
-        << UName_ << " (fields iceDragSource, iceDragCoefficient,"
-        << " iceDragCorrection)" << nl;
+        << UName_ << " (fields iceDragSource,"
+        << " iceDragCoefficient)" << nl;
 }
 
 
@@ -81,21 +68,37 @@ Foam::tmp<Foam::fvVectorMatrix> Foam::iceDragReaction::source
     const volVectorField& U
 ) const
 {
-    // S - k (U - U*) + C:  -k U implicit, the rest explicit
+    // S - k (U - U*):  -k U implicit, the rest explicit
     tmp<fvVectorMatrix> tS(fvm::Sp(-coeff_, U));
-    tS.ref() +=
-        source_() + correction_() + coeff_()*U.oldTime()();
+    tS.ref() += explicitSource(U)();
     return tS;
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::iceDragReaction::explicitSource
+(
+    const volVectorField& U
+) const
+{
+    return tmp<volVectorField>::New
+    (
+        "iceDragExplicitSource",
+        source_ + coeff_*U.oldTime()
+    );
 }
 
 
 void Foam::iceDragReaction::correct()
 {
+    // What the implicit part gave the flow in the step just solved
     const volVectorField& U = mesh_.lookupObject<volVectorField>(UName_);
-    correction_.primitiveFieldRef() =
-        coeff_.primitiveField()
-       *(U.primitiveField() - U.oldTime().primitiveField());
-    correction_.correctBoundaryConditions();
+    implicitImpulse_ =
+        -rhoW_*mesh_.time().deltaTValue()
+       *gSum
+        (
+            coeff_.primitiveField()*mesh_.V()
+           *(U.primitiveField() - U.oldTime().primitiveField())
+        );
 }
 
 
@@ -129,7 +132,9 @@ void Foam::iceDragReaction::update(scalar T)
         << " N s, fluid source impulse " << fluidImpulse_
         << " N s, relative imbalance "
         << mag(fluidImpulse_ + floeImpulse_ - lostImpulse_)/scale
-        << ", lost (no cell) " << lostImpulse_ << " N s" << nl;
+        << ", lost (no cell) " << lostImpulse_ << " N s" << nl
+        << "    two-way drag: implicit part's impulse in the last flow step "
+        << implicitImpulse_ << " N s" << nl;
 }
 
 
