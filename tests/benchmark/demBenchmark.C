@@ -6,7 +6,7 @@ Application
     demBenchmark
 
 Description
-    Speed benchmark of the DEM core alone (no water, no flow), issue 7.
+    Speed benchmark of the DEM core alone (no flow solver), issues 7 and 16.
     Built and run by tests/benchmark/Allrun; see tests/benchmark/README.md.
 
     Fields (same seed every run):
@@ -18,7 +18,12 @@ Description
                   unit area against a fixed 48-sided vertical cylinder and
                   the walls. A compaction phase (not timed) brings the field
                   to persistent contact; its end state is cached on disk and
-                  every repetition restarts from it.
+                  every repetition restarts from it;
+      floating    the drifting field of -floatN floes (the real workload,
+                  issue 16) at its draft with gravity, buoyancy and empirical
+                  drag at the tutorials' defaults (water 1025 kg/m3 at z = 0,
+                  C_f = 1, C_s = 0.004, subdivision 2, a 0.3 m/s current
+                  along x; -dragIntegration chooses the drag quadrature).
     Material: ice, density 920 kg/m3, E = 1 GPa, nu = 0.33; friction 0.2,
     restitution 0.3; DEM step 1 ms.
 
@@ -32,13 +37,18 @@ Description
 
 Usage
     demBenchmark [options]
-      -fields drift,compact   fields to run (default both)
+      -fields drift,compact,float  fields to run (default all three)
       -N 500,2000,8000,20000  drifting field sizes
       -compactN 2000          compacting field size
+      -floatN 2000            floating field size
+      -dragIntegration I      floating: drag integration exact | sampled
+                              (default: the core's default)
       -threads 1,2            thread counts
       -steps S                steps per repetition, every field (default:
-                              drifting 4e6/N within [100, 2000],
+                              drifting and floating -duration,
                               compacting -compactSteps)
+      -duration T             drifting and floating: simulated seconds per
+                              repetition (default 15, the open peer's run)
       -compactSteps S         compacting steps per repetition (default 300)
       -reps R                 repetitions, median reported (default 3)
       -warmup T               drifting: simulated seconds run before the
@@ -62,6 +72,9 @@ Usage
 #include "field/VoronoiField.H"
 #include "field/IceFloe.H"
 #include "geometry/DilatedShape.H"
+#include "hydro/Buoyancy.H"
+#include "hydro/Drag.H"
+#include "hydro/FlowVelocity.H"
 
 #include <algorithm>
 #include <chrono>
@@ -222,11 +235,14 @@ struct Options
 {
     bool drift = true;
     bool compact = true;
+    bool floating = true;
+    int floatN = 2000;
+    std::string dragIntegration;    //!< empty: the core's default
     std::vector<int> sizes{500, 2000, 8000, 20000};
     int compactN = 2000;
     std::vector<int> threads{1, 2};
     int steps = 0;                  //!< 0: from the work per repetition
-    double work = 4e6;              //!< drifting floe-steps per repetition
+    double duration = 15;           //!< drifting, floating: simulated s
     int compactSteps = 300;
     int reps = 3;
     double warmup = 0;
@@ -244,9 +260,9 @@ struct Options
 [[noreturn]] void usage(const char* msg)
 {
     std::cerr << "demBenchmark: " << msg << "\n"
-        "usage: demBenchmark [-fields drift,compact] [-N 500,2000,...]"
-        " [-compactN n] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
-        " [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
+        "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
+        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
+        " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
 }
@@ -268,12 +284,19 @@ Options parseOptions(int argc, char* argv[])
             const std::string v = value();
             o.drift = v.find("drift") != std::string::npos;
             o.compact = v.find("compact") != std::string::npos;
-            if (!o.drift && !o.compact) usage("-fields: drift and/or compact");
+            o.floating = v.find("float") != std::string::npos;
+            if (!o.drift && !o.compact && !o.floating)
+            {
+                usage("-fields: drift, compact and/or float");
+            }
         }
         else if (opt == "-N") o.sizes = parseIntList(value());
         else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
+        else if (opt == "-floatN") o.floatN = std::atoi(value().c_str());
+        else if (opt == "-dragIntegration") o.dragIntegration = value();
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
+        else if (opt == "-duration") o.duration = std::atof(value().c_str());
         else if (opt == "-compactSteps") o.compactSteps = std::atoi(value().c_str());
         else if (opt == "-h" || opt == "-help") usage("help");
         else if (opt == "-reps") o.reps = std::max(1, std::atoi(value().c_str()));
@@ -302,6 +325,10 @@ constexpr double kDensity = 920;        //!< [kg/m3]
 constexpr double kSpeed = 0.5;          //!< drifting speed [m/s]
 constexpr double kSpin = 0.05;          //!< largest spin [rad/s]
 constexpr int kCylinderSides = 48;
+constexpr double kTimeStep = 1e-3;      //!< DEM step [s]
+constexpr double kGravity = 9.81;       //!< floating field [m/s2]
+constexpr double kWaterDensity = 1025;  //!< floating field [kg/m3]
+constexpr double kCurrent = 0.3;        //!< floating field, along x [m/s]
 
 //- A generated field: floes (true outlines) + initial velocities + box
 struct Field
@@ -314,6 +341,7 @@ struct Field
     Vec2 cylinderCentre = Vec2::Zero();
     double cylinderRadius = 0;
     double push = 0;                    //!< Pa, along +x
+    bool floating = false;              //!< gravity, buoyancy and drag
     int nCells = 0;
 };
 
@@ -441,8 +469,8 @@ std::unique_ptr<World> buildWorld
 )
 {
     WorldSettings ws;
-    ws.timeStep = 1e-3;
-    ws.gravity = Vec3::Zero();
+    ws.timeStep = kTimeStep;
+    ws.gravity = f.floating ? Vec3(0, 0, -kGravity) : Vec3::Zero();
     ws.skin = o.skin;
     ws.featureSkin = o.featureSkin;
     auto world = std::make_unique<World>(ws);
@@ -503,6 +531,28 @@ std::unique_ptr<World> buildWorld
     if (f.push != 0)
     {
         world->addForceModel(std::make_shared<PushModel>(*world, f.push));
+    }
+
+    if (f.floating)
+    {
+        // The water of the tutorials (doc/caseFiles.md defaults): buoyancy
+        // and empirical drag in a uniform current. Wind on the floes, once
+        // the core has it, goes here too (a BodyForceModel beside these).
+        const WaterSettings water{kWaterDensity, 0};
+        DragSettings drag;
+        if (!o.dragIntegration.empty())
+        {
+            drag.integration = dragIntegrationFromName(o.dragIntegration);
+        }
+        world->addForceModel(std::make_shared<Buoyancy>(water));
+        world->addForceModel
+        (
+            std::make_shared<Drag>
+            (
+                water, drag,
+                std::make_shared<UniformCurrent>(Vec3(kCurrent, 0, 0))
+            )
+        );
     }
 
     if (snap && snap->valid)
@@ -699,7 +749,8 @@ int stepsFor(int n, bool compacting, const Options& o)
 {
     if (o.steps > 0) return o.steps;
     if (compacting) return o.compactSteps;
-    return std::max(100, std::min(2000, int(std::lround(o.work/n))));
+    (void)n;
+    return std::max(1, int(std::lround(o.duration/kTimeStep)));
 }
 
 
@@ -862,6 +913,16 @@ int main(int argc, char* argv[])
                 }
             }
             identical = benchmarkField(f, o, &snap, !o.callgrind) && identical;
+        }
+
+        if (o.floating)
+        {
+            Field f = makeField("floating", o.floatN, 0.7, false, o);
+            f.floating = true;
+            std::printf("# field=floating floes=%zu box=%.1f m: gravity, buoyancy,"
+                " empirical drag (current %g m/s along x)\n", f.floes.size(),
+                f.xmax - f.xmin, kCurrent);
+            identical = benchmarkField(f, o, nullptr, !o.callgrind) && identical;
         }
     }
     catch (const Error& e)

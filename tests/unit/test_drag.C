@@ -31,6 +31,7 @@ Description
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <random>
 #include <vector>
 
 using namespace iceDEM;
@@ -407,11 +408,15 @@ TEST(Drag, spinDown)
         rhoWater*ds.formCoefficient*d*std::pow(L, 4)/32
       + 0.5*rhoWater*ds.skinCoefficient*K*std::pow(0.5*L, 5);
 
-    // Moment coefficient of the facet model per subdivision
+    // Moment coefficient of the facet model: sampled per subdivision, then
+    // the exact integration (last)
     std::vector<double> cm;
-    for (int sub = 0; sub <= DragSettings::maxSubdivision; ++sub)
+    for (int sub = 0; sub <= DragSettings::maxSubdivision + 1; ++sub)
     {
-        ds.subdivision = sub;
+        const bool exact = sub > DragSettings::maxSubdivision;
+        ds.integration =
+            exact ? DragIntegration::exact : DragIntegration::sampled;
+        ds.subdivision = exact ? 2 : sub;
         DragWorld dw(1e-3, Vec3::Zero());
         dw.addFloe(L, L, h, -d, Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, w0));
         Drag drag
@@ -424,23 +429,35 @@ TEST(Drag, spinDown)
         EXPECT_NEAR(F.norm(), 0, 1e-12*c*w0*w0/L);
         EXPECT_NEAR(M.head<2>().norm(), 0, 1e-12*c*w0*w0);
         cm.push_back(-M.z()/(w0*w0));
-        std::cout << "spin-down: subdivision " << sub << ": c_m/c = "
-                  << cm.back()/c << std::endl;
+        std::cout << "spin-down: "
+                  << (exact ? std::string("exact")
+                      : "subdivision " + std::to_string(sub))
+                  << ": c_m/c = " << cm.back()/c << std::endl;
     }
-    // Converges to the continuous law: the error falls with refinement
+    const double cExact = cm.back();
+    cm.pop_back();
+    // Sampled: converges to the continuous law, the error falls with
+    // refinement
     for (std::size_t s = 1; s < cm.size(); ++s)
     {
         EXPECT_LT(std::abs(cm[s]/c - 1), std::abs(cm[s - 1]/c - 1));
     }
     EXPECT_NEAR(cm.back()/c, 1, 0.01);
+    // Exact: the form drag is exact, the skin drag's conical rule errs by
+    // 5.5e-4 of the skin part (3-point Gauss-Legendre on (1 + x^2)^(3/2)
+    // over [-1, 1], the moment along a square's edge), 2.2 % of c here
+    const double cSkin = 0.5*rhoWater*ds.skinCoefficient*K*std::pow(0.5*L, 5);
+    EXPECT_NEAR(cExact, c, 6e-4*cSkin + 1e-12*c);
+    EXPECT_LT(std::abs(cExact/c - 1), std::abs(cm.back()/c - 1));
 
-    // Time history at the default subdivision
+    // Time history at the default settings (exact integration)
     ds = DragSettings();
+    ASSERT_TRUE(ds.integration == DragIntegration::exact);
     DragWorld dw(5e-3);
     dw.addFloe(L, L, h, -d, Vec3::Zero(), Vec3::Zero(), Vec3(0, 0, w0));
     dw.addWater(ds, Vec3::Zero());
     const double I = dw.body(0).mass*L*L/6;
-    const double cDefault = cm[ds.subdivision];
+    const double cDefault = cExact;
 
     double worst = 0;
     for (int s = 1; s <= 60; ++s)
@@ -494,4 +511,132 @@ TEST(Drag, independentOfThreadCount)
         EXPECT_EQ(a[i].L, b[i].L);
         EXPECT_EQ(a[i].q.coeffs(), b[i].q.coeffs());
     }
+}
+
+
+// The exact integration (uniform current) against the sampled path on many
+// random poses, velocities and currents: level, tilted, overwashed, a
+// sliver wet. Form drag (C_s = 0): the closed form is the limit the sampled
+// sums converge to, at the midpoint rule's rate h^2 (a factor ~4 per
+// subdivision). Skin drag (C_f = 0): the 6-point conical rule against the
+// Richardson limit of the sampled sums (4 F_4 - F_3)/3. The errors are
+// printed (the accuracy table of tests/benchmark/README.md).
+TEST(Drag, exactAgreesWithSampledOnRandomPoses)
+{
+    const SingleThread oneThread;
+    std::mt19937 gen(16);
+    std::uniform_real_distribution<double> U(-1, 1);
+
+    constexpr int nSub = DragSettings::maxSubdivision + 1;
+    // Sum of squared relative errors per subdivision (form, skin) and of
+    // the exact rule (skin), and the largest
+    double formSq[nSub] = {}, skinSq[nSub] = {}, formMax[nSub] = {},
+        skinMax[nSub] = {};
+    double ruleSq = 0, ruleMax = 0;
+    int nPoses = 0;
+
+    for (int trial = 0; trial < 200; ++trial)
+    {
+        DragWorld dw(1e-3, Vec3::Zero());
+        const double Lx = 2 + 3*std::abs(U(gen));
+        const double Ly = 2 + 3*std::abs(U(gen));
+        dw.addFloe(Lx, Ly, 1, -0.5);
+        Body& b = dw.world->bodies()[0];
+        // Nearly level (floating) or any attitude (overwashed, on edge)
+        const Mat3 R = trial % 2
+            ? Mat3(Eigen::AngleAxisd
+              (
+                  0.15*U(gen), Vec3(U(gen), U(gen), 0.2*U(gen)).normalized()
+              ).toRotationMatrix())
+            : Mat3(Eigen::AngleAxisd
+              (
+                  M_PI*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+              ).toRotationMatrix());
+        b.q = Quat(R);
+        b.x = Vec3(10*U(gen), 10*U(gen), 0.6*U(gen));
+        b.v = Vec3(0.5*U(gen), 0.5*U(gen), 0.1*U(gen));
+        b.setOmega(Vec3(0.1*U(gen), 0.1*U(gen), 0.3*U(gen)));
+        const Vec3 current(0.3*U(gen), 0.3*U(gen), 0);
+        const double size = std::max(Lx, Ly);
+
+        auto drag = [&](bool form, DragIntegration integration, int sub,
+                        Vec3& F, Vec3& M)
+        {
+            DragSettings ds;
+            ds.formCoefficient = form ? 1.0 : 0.0;
+            ds.skinCoefficient = form ? 0.0 : 0.004;
+            ds.integration = integration;
+            ds.subdivision = sub;
+            Drag d
+            (
+                WaterSettings{rhoWater, 0}, ds,
+                std::make_shared<UniformCurrent>(current)
+            );
+            d.bodyDrag(*dw.world, 0, F, M);
+        };
+        auto error = [&](const Vec3& F, const Vec3& M,
+                         const Vec3& Fr, const Vec3& Mr)
+        {
+            const double scale = Fr.norm() + Mr.norm()/size;
+            return ((F - Fr).norm() + (M - Mr).norm()/size)/scale;
+        };
+
+        Vec3 Fe, Me, Se, SMe;
+        drag(true, DragIntegration::exact, 0, Fe, Me);
+        drag(false, DragIntegration::exact, 0, Se, SMe);
+        if (!(Fe.norm() > 0) || !(Se.norm() > 0))
+        {
+            continue;   // dry, or nothing leading
+        }
+        ++nPoses;
+        Vec3 Fs[nSub], Ms[nSub], Ss[nSub], SMs[nSub];
+        for (int sub = 0; sub < nSub; ++sub)
+        {
+            drag(true, DragIntegration::sampled, sub, Fs[sub], Ms[sub]);
+            drag(false, DragIntegration::sampled, sub, Ss[sub], SMs[sub]);
+        }
+        const Vec3 Sr = (4*Ss[nSub - 1] - Ss[nSub - 2])/3;
+        const Vec3 SMr = (4*SMs[nSub - 1] - SMs[nSub - 2])/3;
+        for (int sub = 0; sub < nSub; ++sub)
+        {
+            const double ef = error(Fs[sub], Ms[sub], Fe, Me);
+            const double es = error(Ss[sub], SMs[sub], Sr, SMr);
+            formSq[sub] += ef*ef;
+            skinSq[sub] += es*es;
+            formMax[sub] = std::max(formMax[sub], ef);
+            skinMax[sub] = std::max(skinMax[sub], es);
+        }
+        const double er = error(Se, SMe, Sr, SMr);
+        ruleSq += er*er;
+        ruleMax = std::max(ruleMax, er);
+    }
+
+    ASSERT_GT(nPoses, 100);
+    std::cout << "drag accuracy over " << nPoses << " random poses"
+              << " (relative error of force + moment/size, rms and max):\n";
+    double rms[nSub];
+    for (int sub = 0; sub < nSub; ++sub)
+    {
+        rms[sub] = std::sqrt(formSq[sub]/nPoses);
+        std::cout << "  sampled subdivision " << sub
+                  << ": form vs exact " << rms[sub] << " (max "
+                  << formMax[sub] << "), skin vs Richardson limit "
+                  << std::sqrt(skinSq[sub]/nPoses) << " (max " << skinMax[sub]
+                  << ")\n";
+    }
+    const double ruleRms = std::sqrt(ruleSq/nPoses);
+    std::cout << "  exact integration: form exact, skin (6-point rule) vs"
+              << " Richardson limit " << ruleRms << " (max " << ruleMax << ")"
+              << std::endl;
+
+    // The sampled form drag converges to the closed form at the rate h^2
+    for (int sub = 1; sub < nSub; ++sub)
+    {
+        EXPECT_GT(rms[sub - 1]/rms[sub], 3.0) << "subdivision " << sub;
+    }
+    EXPECT_LT(rms[nSub - 1], 1e-3);
+    // The skin rule: no less accurate than the sampling it replaces as the
+    // default (subdivision 2), in the mean and at its worst
+    EXPECT_LT(ruleRms, std::sqrt(skinSq[2]/nPoses));
+    EXPECT_LT(ruleMax, skinMax[2]);
 }

@@ -281,6 +281,94 @@ TEST(WaterClip, belowPlusAboveIsWhole)
 }
 
 
+// submergedVolume (divergence theorem over the wet faces) against the
+// general path (clipped tetrahedra) at random poses: level, tilted, on a
+// corner, overwashed, a sliver wet, nearly and entirely submerged, near the
+// origin and far from it, the truncated prisms among them; equal to
+// round-off
+TEST(WaterClip, divergenceEqualsTetrahedraOnRandomPoses)
+{
+    const DilatedShape floe
+    (
+        ConvexPolyhedron::prism
+        (
+            {{0, 0}, {3, 0.2}, {3.5, 2}, {1.2, 3.1}, {-0.3, 1.4}}, -0.4, 0.9
+        ),
+        0.1
+    );
+    PolyhedronBuffer buffer;
+    const PolyhedronView outer = floe.outer(buffer);
+    const ConvexPolyhedron box = ConvexPolyhedron::box(Vec3(2, 1, 0.5));
+    const double L = 4;
+
+    std::mt19937 gen(2026);
+    std::uniform_real_distribution<double> U(-1, 1);
+    int partly = 0;
+    int prismPoses = 0;
+    for (int trial = 0; trial < 2000; ++trial)
+    {
+        const PolyhedronView P = trial % 2 ? PolyhedronView(box) : outer;
+        // Half the poses nearly level (a floating floe), half any rotation
+        const Mat3 R = trial % 4 < 2
+            ? Mat3(Eigen::AngleAxisd
+              (
+                  0.2*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+              ).toRotationMatrix())
+            : randomRotation(gen);
+        const double far = trial % 3 == 0 ? 1e3 : 1;
+        const Vec3 x(far*U(gen), far*U(gen), 1.5*U(gen));
+        const double level = 0.5*U(gen);
+
+        const SubmergedVolume a = submergedVolume(P, R, x, level);
+        const SubmergedVolume b = submergedVolumeByTetrahedra(P, R, x, level);
+        const double whole =
+            submergedVolumeByTetrahedra(P, R, x, level + 100).volume;
+        EXPECT_NEAR(a.volume, b.volume, tol*whole) << "trial " << trial;
+        EXPECT_NEAR((a.centroid - b.centroid).norm(), 0, tol*L + 1e-14*far)
+            << "trial " << trial;
+        partly += b.volume > 0 && b.volume < whole;
+        // Poses that take the truncated-prism path
+        std::vector<double> h;
+        for (const Vec3& v : P.vertices()) h.push_back((R*v + x).z() - level);
+        prismPoses += truncatedPrismBottom(P, R, h.data()) >= 0;
+    }
+    // Most poses cut the body; many cut the sides only
+    EXPECT_GT(partly, 1000);
+    EXPECT_GT(prismPoses, 150);
+    std::cout << partly << " of 2000 poses cut, " << prismPoses
+              << " of them across the sides only" << std::endl;
+}
+
+
+// clipNegative: the part of a polygon where a linear function is negative
+TEST(WaterClip, clipNegativeOfASquare)
+{
+    const Vec3 p[4] = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+    Vec3 q[5];
+    double sq[5];
+    // s = x - 0.5: the strip 0 <= x < 0.5, a rectangle
+    const double s[4] = {-0.5, 1.5, 1.5, -0.5};
+    ASSERT_EQ(clipNegative(p, s, 4, q, sq), 4);
+    double area = 0;
+    for (int k = 1; k + 1 < 4; ++k)
+    {
+        area += 0.5*((q[k] - q[0]).cross(q[k + 1] - q[0])).z();
+    }
+    EXPECT_NEAR(area, 1, 1e-15);
+    // s = x + y - 1: the corner triangle below the diagonal, s = 0 on its
+    // cut vertices
+    const double t[4] = {-1, 1, 3, 1};
+    ASSERT_EQ(clipNegative(p, t, 4, q, sq), 3);
+    for (int k = 0; k < 3; ++k)
+    {
+        EXPECT_NEAR(sq[k], q[k].x() + q[k].y() - 1, 1e-15);
+    }
+    // Nothing negative, only a vertex on zero: nothing
+    const double u[4] = {0, 1, 2, 1};
+    EXPECT_EQ(clipNegative(p, u, 4, q, sq), 0);
+}
+
+
 // Buoyancy and drag clip a floe's outer polyhedron, derived from the core
 // for a prism (DilatedShape::outer): at arbitrary poses it gives the
 // submerged volume, centroid and wet face areas of the half-space

@@ -23,6 +23,8 @@ Description
 
     Outputs under postProcessing/iceDEM/<startTime>/ (see iceDEMOutput.H and
     doc/caseFiles.md): bodies.dat, energy.dat, VTK/ with bodies.vtk.series.
+    Function objects of system/controlDict run after every time step (e.g.
+    iceLoadStatistics: load statistics and the force balance).
 
     If the state of a body becomes non-finite the run stops naming the body
     and the time.
@@ -55,6 +57,9 @@ Usage
 #include "iceDEMOutput.H"
 #include "IOdictionary.H"
 #include "runWithoutFlow.H"
+#include "completeTime.H"
+#include "completeTimeWriter.H"
+#include "dictionaryChecks.H"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -75,7 +80,6 @@ int main(int argc, char *argv[])
         " every written time directory (restart with startFrom latestTime)."
     );
     argList::noParallel();
-    argList::noFunctionObjects(true);
     argList::addOption
     (
         "threads",
@@ -101,7 +105,12 @@ int main(int argc, char *argv[])
         #endif
     }
 
-    #include "createTime.H"
+    // Started from the last complete time (a run killed while writing)
+    autoPtr<Time> runTimePtr(completeTime::createTime(args));
+    Time& runTime = runTimePtr();
+
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
 
     #ifdef _OPENMP
     Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;
@@ -141,6 +150,9 @@ int main(int argc, char *argv[])
 
     const ::iceDEM::World& world = demCase.world();
 
+    // Write times marked complete last; SIGTERM: write and stop
+    completeTimeWriter writer(runTime);
+
     Info<< "iceDEM: output in " << output.path() << nl
         << "iceDEM: estimated Hertz contact time "
         << world.estimatedContactTime() << " s, DEM step "
@@ -157,7 +169,7 @@ int main(int argc, char *argv[])
         demCase.advanceTo(runTime.value());
 
         output.write();
-        runTime.write();
+        writer.write();
 
         const ::iceDEM::Energies e = world.energies();
         Info<< "    DEM steps " << (world.stepIndex() - steps0)

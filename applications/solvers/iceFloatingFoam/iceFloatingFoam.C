@@ -60,9 +60,11 @@ Usage
 
 #include "fvCFD.H"
 #include "clockTime.H"
+#include "cpuTime.H"
 #include "dynamicFvMesh.H"
 #include "dynamicMotionSolverFvMesh.H"
 #include "sixDoFRigidBodyMotionSolver.H"
+#include "rigidLidMotionSolver.H"
 #include "singlePhaseTransportModel.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
@@ -73,6 +75,9 @@ Usage
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
 #include "runWithoutFlow.H"
+#include "completeTime.H"
+#include "completeTimeWriter.H"
+#include "dictionaryChecks.H"
 
 #include <memory>
 
@@ -82,7 +87,7 @@ namespace Foam
 {
 
 //- The sixDoF motion of the structure, or nullptr when the mesh is not moved
-//  by sixDoFRigidBodyMotion
+//  by sixDoFRigidBodyMotion or rigidLidSixDoFRigidBodyMotion
 static const sixDoFRigidBodyMotion* structureMotionOf
 (
     const dynamicFvMesh& mesh
@@ -95,7 +100,13 @@ static const sixDoFRigidBodyMotion* structureMotionOf
     }
     const auto* solver =
         dynamic_cast<const sixDoFRigidBodyMotionSolver*>(&dm->motion());
-    return solver ? &solver->motion() : nullptr;
+    if (solver)
+    {
+        return &solver->motion();
+    }
+    const auto* rigidLid =
+        dynamic_cast<const rigidLidMotionSolver*>(&dm->motion());
+    return rigidLid ? &rigidLid->motion() : nullptr;
 }
 
 } // End namespace Foam
@@ -120,7 +131,12 @@ int main(int argc, char *argv[])
 
     #include "addCheckCaseOptions.H"
     #include "setRootCaseLists.H"
-    #include "createTime.H"
+    // Started from the last complete time (a run killed while writing)
+    autoPtr<Time> runTimePtr(completeTime::createTime(args));
+    Time& runTime = runTimePtr();
+
+    // A zero or negative deltaT would never reach endTime
+    iceDEMChecks::checkTimeControls(runTime);
 
     if (args.found("noFlow"))
     {
@@ -168,15 +184,23 @@ int main(int argc, char *argv[])
 
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
+    // Write times marked complete last; SIGTERM: write and stop
+    completeTimeWriter writer(runTime);
+
     Info<< "\nStarting time loop\n" << endl;
 
     // Wall time per CFD step: flow solve, mesh motion (sixDoF + mesh), DEM
     // (with, separately, the resolved-velocity sampling inside it)
+    // and the same in CPU time of the process (all threads): the split on
+    // a machine shared with other jobs, where wall times are inflated
     clockTime stepClock;
+    cpuTime cpuClock;
 
     while (runTime.run())
     {
+        #include "readFlowSolveInterval.H"
         scalar tFlow = 0, tMesh = 0, tDem = 0;
+        scalar cFlow = 0, cMesh = 0, cDem = 0;
         #include "readDyMControls.H"
         #include "CourantNo.H"
         #include "setDeltaT.H"
@@ -192,39 +216,40 @@ int main(int argc, char *argv[])
             dem->beginStep();
         }
 
-        // --- Pressure-velocity PIMPLE corrector loop
-        while (pimple.loop())
+        // The flow is solved every flowSolveInterval-th step (a steady
+        // current), over the time since its last solution: flow step =
+        // flowSolveInterval x deltaT, the structure, the mesh and the DEM
+        // still advance every deltaT. In between, the flow fields are kept
+        // and the fluid force of the last solution acts (its pressure holds
+        // the flow's reaction to the hull's mean acceleration over the flow
+        // step: the same impulse). The mesh is moved with deltaT (mesh flux
+        // = the mesh's velocity); under the rigid planar motion the cell
+        // volumes do not change, so the longer flow step on it is consistent.
+        const scalar deltaT = runTime.deltaTValue();
+        const bool solveFlow = (runTime.timeIndex() % flowSolveInterval == 0);
+        if (!solveFlow || flowSolveInterval > 1)
         {
-            if (pimple.firstIter() || moveMeshOuterCorrectors)
+            #include "moveMesh.H"
+        }
+        if (solveFlow && flowSolveInterval > 1)
+        {
+            runTime.setDeltaT(flowSolveInterval*deltaT, false);
+        }
+
+        // --- Pressure-velocity PIMPLE corrector loop
+        while (solveFlow && pimple.loop())
+        {
+            if
+            (
+                flowSolveInterval == 1
+             && (pimple.firstIter() || moveMeshOuterCorrectors)
+            )
             {
-                // Structure motion (sixDoF) and mesh motion
-                stepClock.timeIncrement();
-                mesh.update();
-
-                if (mesh.changing())
-                {
-                    MRF.update();
-
-                    if (correctPhi)
-                    {
-                        // Absolute flux from the mapped face velocity
-                        phi = mesh.Sf() & Uf();
-
-                        #include "correctPhi.H"
-
-                        // Flux relative to the mesh motion
-                        fvc::makeRelative(phi, U);
-                    }
-
-                    if (checkMeshCourantNo)
-                    {
-                        #include "meshCourantNo.H"
-                    }
-                }
-                tMesh += stepClock.timeIncrement();
+                #include "moveMesh.H"
             }
 
             stepClock.timeIncrement();
+            cpuClock.cpuTimeIncrement();
             #include "UEqn.H"
 
             // --- Pressure corrector loop
@@ -239,26 +264,35 @@ int main(int argc, char *argv[])
                 turbulence->correct();
             }
             tFlow += stepClock.timeIncrement();
+            cFlow += cpuClock.cpuTimeIncrement();
+        }
+        if (solveFlow && flowSolveInterval > 1)
+        {
+            runTime.setDeltaT(deltaT, false);
         }
 
         // DEM sub-cycle over the step; the ice load of the next step
         if (dem)
         {
             stepClock.timeIncrement();
+            cpuClock.cpuTimeIncrement();
             dem->solve();
             tDem = stepClock.timeIncrement();
+            cDem = cpuClock.cpuTimeIncrement();
         }
         const scalar tSampling = dem ? dem->samplingSeconds() : 0;
         Info<< "Step wall time: flow " << tFlow << " s, mesh motion " << tMesh
             << " s, velocity sampling " << tSampling << " s, DEM "
-            << tDem - tSampling << " s" << nl;
+            << tDem - tSampling << " s" << nl
+            << "Step cpu time: flow " << cFlow << " s, mesh motion " << cMesh
+            << " s, DEM with sampling " << cDem << " s" << nl;
 
         if (motionLog.valid())
         {
             motionLog->write(*hullPtr);
         }
 
-        runTime.write();
+        writer.write();
 
         runTime.printExecutionTime(Info);
     }

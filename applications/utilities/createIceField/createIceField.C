@@ -125,6 +125,7 @@ SourceFiles
 \*---------------------------------------------------------------------------*/
 
 #include "argList.H"
+#include "caseEntries.H"
 #include "Time.H"
 #include "IOdictionary.H"
 #include "OSspecific.H"
@@ -139,6 +140,7 @@ SourceFiles
 #include <sstream>
 
 using namespace Foam;
+using Foam::iceDEMChecks::checkEntries;
 
 // * * * * * * * * * * * * * * * * Functions * * * * * * * * * * * * * * * //
 
@@ -199,7 +201,12 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
 {
     iceDEM::VoronoiFieldSettings s;
 
+    // Every keyword must be one the generator reads (a misspelt optional
+    // entry would otherwise leave its default in place without a word)
+    checkEntries(dict, "system/createIceFieldDict", {""}, "the top level");
+
     const dictionary& region = dict.subDict("region");
+    checkEntries(region, "system/createIceFieldDict", {"region"}, "region");
     const vector2D lo = region.get<vector2D>("min");
     const vector2D hi = region.get<vector2D>("max");
     s.xmin = lo.x();
@@ -249,6 +256,18 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
             fatalCoreError(dict, err);
         }
         using D = iceDEM::ThicknessSettings::Distribution;
+        checkEntries
+        (
+            *td, "system/createIceFieldDict",
+            {
+                s.thickness.distribution == D::constant
+              ? "thickness(distribution constant)"
+              : s.thickness.distribution == D::uniform
+              ? "thickness(distribution uniform)"
+              : "thickness(distribution normal)"
+            },
+            "thickness"
+        );
         switch (s.thickness.distribution)
         {
             case D::constant:
@@ -348,6 +367,19 @@ iceDEM::VoronoiFieldSettings readSettings(const dictionary& dict)
             iceDEM::ExclusionZone zone;
             zone.name = e.keyword();
             const word type = z.get<word>("type");
+            if (type == "circle" || type == "polygon")
+            {
+                checkEntries
+                (
+                    z, "system/createIceFieldDict",
+                    {
+                        type == "circle"
+                      ? "exclusionZones/*(type circle)"
+                      : "exclusionZones/*(type polygon)"
+                    },
+                    "exclusion zone " + e.keyword()
+                );
+            }
             if (type == "circle")
             {
                 zone.type = iceDEM::ExclusionZone::Type::circle;
@@ -562,6 +594,10 @@ int main(int argc, char *argv[])
     // PNG top view
     {
         const dictionary& img = dict.optionalSubDict("image");
+        if (dict.isDict("image"))
+        {
+            checkEntries(img, "system/createIceFieldDict", {"image"}, "image");
+        }
         const bool writeImage = img.getOrDefault<Switch>("write", true);
         if (writeImage)
         {

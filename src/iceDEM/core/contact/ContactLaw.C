@@ -147,7 +147,11 @@ ContactResult ContactLaw::evaluate
     const double Sn = 2*c.Estar*sqrtRd;                 // dF/ddelta
     const double elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
     const double damping = 2*std::sqrt(5.0/6.0)*c.beta*std::sqrt(mEff*Sn);
-    const double Fn = std::max(0.0, elastic - damping*vn);
+    // A weighted contact (w < 1) has the potential w U(delta): every part
+    // of its force scales with w, and the weight's own gradient gives a
+    // couple (w depends on the relative orientation only)
+    const double w = g.weight;
+    const double Fn = w*std::max(0.0, elastic - damping*vn);
 
     // Tangential spring: rotate into the current tangent plane, keep length
     const double xiLen = xi.norm();
@@ -160,7 +164,7 @@ ContactResult ContactLaw::evaluate
     const Vec3 vt = vRel - vn*n;
     xi += vt*dt;
 
-    const double kt = mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn;
+    const double kt = w*(mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn);
     Vec3 Ft = -kt*xi;
     const double FtMax = c.friction*Fn;
     const double FtLen = Ft.norm();
@@ -176,9 +180,11 @@ ContactResult ContactLaw::evaluate
 
     ContactResult r;
     // Force on j: pushed along +n
+    const double U = 0.4*elastic*delta;
     r.forceOnJ = Fn*n + Ft;
     r.normalForce = Fn;
-    r.elasticEnergy = 0.4*elastic*delta + (kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
+    r.elasticEnergy = w*U + (kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
+    r.coupleOnJ = -U*g.weightGradient;
     return r;
 }
 

@@ -64,6 +64,55 @@ inline bool inVertexCone
     return true;
 }
 
+//- Fade of a patch-corner contact across the tolerance band of its window,
+//  x = (how far the window is left)/parallelEdgeSin: 1 for x <= 0, 0 for
+//  x >= 1, C1 in between (so that the weight's couple is continuous too)
+inline double bandFade(double x)
+{
+    if (!(x > 0)) return 1;
+    if (!(x < 1)) return 0;
+    return (1 - x)*(1 - x)*(1 + 2*x);
+}
+
+//- d bandFade/dx
+inline double bandFadeSlope(double x)
+{
+    if (!(x > 0) || !(x < 1)) return 0;
+    return -6*x*(1 - x);
+}
+
+//- Weight of vertex v on a face, normal nBody (away from S, S's frame): the
+//  product over the edges at v of bandFade(lean/sin0), lean = n . d_k the
+//  edge's lean towards the face; 0 (no contact) if an edge leans by sin0 or
+//  more. grad: dw/dphi_S, its derivative with respect to a rotation of S
+//  (n is fixed in the other body), S's frame: d(lean_k)/dphi_S = d_k x n
+inline double vertexBandWeight
+(
+    const DilatedShape& S,
+    int v,
+    const Vec3& nBody,
+    double sin0,
+    Vec3& grad
+)
+{
+    const ConvexPolyhedron& P = S.core();
+    double w = 1;
+    Vec3 g = Vec3::Zero();
+    for (int k = P.vertexEdgeBegin(v); k < P.vertexEdgeEnd(v); ++k)
+    {
+        const Vec3 d = S.vertexEdgeSign(v, k)*S.edgeDirection(P.vertexEdges()[k]);
+        const double lean = nBody.dot(d);
+        if (!(lean > coneTolerance)) continue;
+        const double x = lean/sin0;
+        const double h = bandFade(x);
+        if (!(h > 0)) return 0;
+        w *= h;
+        g += (bandFadeSlope(x)/(sin0*h))*d.cross(nBody);
+    }
+    grad = w*g;
+    return w;
+}
+
 //- For a vertex touching an edge with unit direction t: inside the vertex's
 //  cone, where an edge at the vertex that is nearly parallel to t
 //  (|d x t| < parallelSin) may lean towards the contact by up to parallelSin.
@@ -187,7 +236,9 @@ public:
         double dist,
         double rI,
         double rJ,
-        double sinAngle = 1
+        double sinAngle = 1,
+        double weight = 1,
+        const Vec3& weightGradient = Vec3::Zero()
     )
     {
         if (dist < minDistance)
@@ -229,6 +280,8 @@ public:
         c.g.radiusI = rI;
         c.g.radiusJ = rJ;
         c.g.sinAngle = sinAngle;
+        c.g.weight = weight;
+        c.g.weightGradient = weightGradient;
         c.featureA = fa;
         c.featureB = fb;
     }
@@ -386,11 +439,14 @@ public:
         const Vec3 q = p - dist*face.normal;
         if (!insideFace(SB_, f, q, tolB_)) return;
         const Vec3 n = -(B_.R*face.normal);
-        if (!inVertexCone(SA_, i, RAt_*n, parallelSin_)) return;
+        Vec3 grad;
+        const double w = vertexBandWeight(SA_, i, RAt_*n, parallelSin_, grad);
+        if (!(w > 0)) return;
+        // The vertex on A = i: dw/dphi_j = -dw/dphi_A
         col.add
         (
             FeaturePair::vertexFace, featureKey(kVertex, i), featureKey(kFace, f),
-            wA_[i], n, dist, rA_, rB_
+            wA_[i], n, dist, rA_, rB_, 1, w, -(A_.R*grad)
         );
     }
 
@@ -403,11 +459,13 @@ public:
         const Vec3 q = p - dist*face.normal;
         if (!insideFace(SA_, f, q, tolA_)) return;
         const Vec3 n = A_.R*face.normal;
-        if (!inVertexCone(SB_, j, -(RBt_*n), parallelSin_)) return;
+        Vec3 grad;
+        const double w = vertexBandWeight(SB_, j, -(RBt_*n), parallelSin_, grad);
+        if (!(w > 0)) return;
         col.add
         (
             FeaturePair::vertexFace, featureKey(kFace, f), featureKey(kVertex, j),
-            A_.R*q + A_.x, n, dist, rB_, rA_
+            A_.R*q + A_.x, n, dist, rB_, rA_, 1, w, B_.R*grad
         );
     }
 
@@ -514,12 +572,61 @@ public:
         const double dist = std::sqrt(dist2);
         if (dist < tiny_) return;
         const Vec3 n = x.diff/dist;
-        if (!inEdgeCone(SA_, a, RAt_*n, x.parallel) || !inEdgeCone(SB_, b, -(RBt_*n), x.parallel)) return;
         const double sinAngle = x.d1.cross(x.d2).norm()/std::sqrt(x.a11*x.a22);
+        if (x.parallel)
+        {
+            if (!inEdgeCone(SA_, a, RAt_*n, true) || !inEdgeCone(SB_, b, -(RBt_*n), true)) return;
+            col.add
+            (
+                FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
+                x.c1, n, dist, rA_, rB_, sinAngle
+            );
+            return;
+        }
+        // Crossing edges: the normal inside both wedges, or past one of
+        // their faces' normals by up to parallelEdgeSin: the crossing is then
+        // a corner of a patch (the other edge lying nearly parallel on that
+        // face; its other corner is a vertex-face contact, in its own band),
+        // weighted down to 0 across the band. n = +-(u1 x u2)/|u1 x u2|
+        // depends on the edges' directions only, and so does the weight: its
+        // gradient is a couple, dw/dphi_B = sum of the factors' slopes times
+        // d(mu)/dphi_B, derived from d n = (I - n n^T) d(u1 x u2)/|u1 x u2|
+        const Vec3 u1 = x.d1/std::sqrt(x.a11);
+        const Vec3 u2 = x.d2/std::sqrt(x.a22);
+        const double sigma = u1.cross(u2).dot(n) > 0 ? 1 : -1;
+        double w = 1;
+        Vec3 grad = Vec3::Zero();
+        for (int side = 0; side < 2; ++side)
+        {
+            // A face of edge a: mu = n . in, dmu/dphi_B = u2 x (g x u1),
+            // g = sigma (I - n n^T) in/|u1 x u2|
+            const Vec3 inA = A_.R*SA_.edgeInward(a, side);
+            const double muA = n.dot(inA);
+            if (muA > coneTolerance)
+            {
+                const double h = bandFade(muA/parallelSin_);
+                if (!(h > 0)) return;
+                w *= h;
+                const Vec3 g = (sigma/sinAngle)*(inA - muA*n);
+                grad += (bandFadeSlope(muA/parallelSin_)/(parallelSin_*h))*u2.cross(g.cross(u1));
+            }
+            // A face of edge b: mu = -n . in, dmu/dphi_B = -u1 x (u2 x g),
+            // g = -sigma (I - n n^T) in/|u1 x u2|
+            const Vec3 inB = B_.R*SB_.edgeInward(b, side);
+            const double muB = -n.dot(inB);
+            if (muB > coneTolerance)
+            {
+                const double h = bandFade(muB/parallelSin_);
+                if (!(h > 0)) return;
+                w *= h;
+                const Vec3 g = (-sigma/sinAngle)*(inB + muB*n);
+                grad -= (bandFadeSlope(muB/parallelSin_)/(parallelSin_*h))*u1.cross(u2.cross(g));
+            }
+        }
         col.add
         (
             FeaturePair::edgeEdge, featureKey(kEdge, a), featureKey(kEdge, b),
-            x.c1, n, dist, rA_, rB_, sinAngle
+            x.c1, n, dist, rA_, rB_, sinAngle, w, w*grad
         );
     }
 
@@ -1135,6 +1242,8 @@ int findWallContacts
         c.g.radiusI = r;
         c.g.radiusJ = 0;
         c.g.sinAngle = 1;
+        c.g.weight = 1;
+        c.g.weightGradient.setZero();
         c.featureA = featureKey(kVertex, v);
         c.featureB = featureKey(kPlane, 0);
     }

@@ -21,11 +21,11 @@ namespace
     //- At most this many grid cells per body (a sparse field enlarges cells)
     constexpr double maxCellsPerBody = 8.0;
 
-    //- Order of pairs: by i, then bodies before walls
-    inline long long pairKey(int i, int j, int nBodies)
+    //- Order of pairs: by i, then bodies before walls, then by image
+    inline long long pairKey(int i, int j, int image, int nBodies)
     {
         const long long jj = j >= 0 ? j : nBodies + (-1 - j);
-        return static_cast<long long>(i)*(nBodies + 1000000LL) + jj;
+        return (static_cast<long long>(i)*(nBodies + 1000000LL) + jj)*9 + image;
     }
 }
 
@@ -34,6 +34,8 @@ void NeighbourList::build(const World& world)
 {
     const std::vector<Body>& bodies = world.bodies();
     const int N = static_cast<int>(bodies.size());
+    const Domain* domain = world.domain();
+    const bool periodic = domain && domain->active();
     ++builds_;
 
     candidates_.clear();
@@ -44,14 +46,22 @@ void NeighbourList::build(const World& world)
         R[i] = world.shapeOf(i).boundingRadius();
     }
 
-    auto close = [&](int i, int j)
-    {
-        const double reach = R[i] + R[j] + skin_;
-        return (bodies[i].x - bodies[j].x).squaredNorm() < reach*reach;
-    };
     auto movable = [&](int i, int j)
     {
         return bodies[i].isFree() || bodies[j].isFree();
+    };
+    //- Body i and body j at y (j itself or an image of it) are candidates
+    auto close = [&](int i, int j, const Vec3& y)
+    {
+        const double reach = R[i] + R[j] + skin_;
+        return (bodies[i].x - y).squaredNorm() < reach*reach;
+    };
+    //- The pair of i with image 'image' of j, stored with the smaller
+    //  index first (the image then applies to the other)
+    auto addPair = [&](int i, int j, int image)
+    {
+        if (i < j) candidates_.push_back({i, j, image});
+        else candidates_.push_back({j, i, Domain::inverse(image)});
     };
 
     if (N > 1)
@@ -63,8 +73,6 @@ void NeighbourList::build(const World& world)
 
         std::vector<int> small, large;
         double rMax = 0;
-        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
-        Vec3 hi = -lo;
         for (int i = 0; i < N; ++i)
         {
             if (R[i] > largeLimit)
@@ -75,12 +83,26 @@ void NeighbourList::build(const World& world)
             {
                 small.push_back(i);
                 rMax = std::max(rMax, R[i]);
-                lo = lo.cwiseMin(bodies[i].x);
-                hi = hi.cwiseMax(bodies[i].x);
             }
         }
 
-        if (!small.empty())
+        // Grid items: the small bodies, then their ghosts near a periodic
+        // side (within the reach of a pair of small bodies)
+        items_.clear();
+        for (int i : small) items_.push_back(Ghost{i, Domain::noImage, bodies[i].x});
+        const int nReal = static_cast<int>(items_.size());
+        if (periodic) domain->ghosts(bodies, small, 2*rMax + skin_, items_);
+        const int nItems = static_cast<int>(items_.size());
+
+        Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
+        Vec3 hi = -lo;
+        for (const Ghost& g : items_)
+        {
+            lo = lo.cwiseMin(g.x);
+            hi = hi.cwiseMax(g.x);
+        }
+
+        if (nReal > 0)
         {
             // Cells at least one interaction range wide: neighbours are in
             // the 27 surrounding cells
@@ -92,7 +114,7 @@ void NeighbourList::build(const World& world)
                       *(std::floor(extent.y()/hh) + 1)
                       *(std::floor(extent.z()/hh) + 1);
             };
-            const double maxCells = maxCellsPerBody*small.size() + 64;
+            const double maxCells = maxCellsPerBody*nItems + 64;
             while (cellsFor(h) > maxCells)
             {
                 h *= 1.5;
@@ -110,28 +132,30 @@ void NeighbourList::build(const World& world)
                 return (cz*ny + cy)*nx + cx;
             };
 
-            // Counting sort of the small bodies by cell (stable: by index)
-            cellOf_.assign(N, -1);
+            // Counting sort of the items by cell (stable: by item)
+            cellOf_.assign(nItems, -1);
             cellStart_.assign(nCells + 1, 0);
-            for (int i : small)
+            for (int k = 0; k < nItems; ++k)
             {
                 int cx, cy, cz;
-                cellOf_[i] = cellIndex(bodies[i].x, cx, cy, cz);
-                ++cellStart_[cellOf_[i] + 1];
+                cellOf_[k] = cellIndex(items_[k].x, cx, cy, cz);
+                ++cellStart_[cellOf_[k] + 1];
             }
             for (int c = 0; c < nCells; ++c)
             {
                 cellStart_[c + 1] += cellStart_[c];
             }
-            cellBodies_.assign(small.size(), -1);
+            cellBodies_.assign(nItems, -1);
             std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
-            for (int i : small)
+            for (int k = 0; k < nItems; ++k)
             {
-                cellBodies_[fill[cellOf_[i]]++] = i;
+                cellBodies_[fill[cellOf_[k]]++] = k;
             }
 
-            for (int i : small)
+            // Real bodies against the items of the surrounding cells
+            for (int r = 0; r < nReal; ++r)
             {
+                const int i = items_[r].body;
                 int cx, cy, cz;
                 cellIndex(bodies[i].x, cx, cy, cz);
                 for (int dz = -1; dz <= 1; ++dz)
@@ -146,17 +170,25 @@ void NeighbourList::build(const World& world)
                     const int c = (z*ny + y)*nx + x;
                     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k)
                     {
-                        const int j = cellBodies_[k];
-                        if (j > i && movable(i, j) && close(i, j))
+                        const Ghost& g = items_[cellBodies_[k]];
+                        const int j = g.body;
+                        if (g.image == Domain::noImage)
                         {
-                            candidates_.emplace_back(i, j);
+                            if (j > i && movable(i, j) && close(i, j, g.x))
+                            {
+                                candidates_.push_back({i, j, Domain::noImage});
+                            }
+                        }
+                        else if (j != i && movable(i, j) && close(i, j, g.x))
+                        {
+                            addPair(i, j, g.image);
                         }
                     }
                 }
             }
         }
 
-        // Large bodies against everything
+        // Large bodies against everything (and every image of it)
         for (int L : large)
         {
             for (int j = 0; j < N; ++j)
@@ -164,9 +196,21 @@ void NeighbourList::build(const World& world)
                 if (j == L) continue;
                 const bool isLarge = R[j] > largeLimit;
                 if (isLarge && j < L) continue;    // large pair once
-                if (movable(L, j) && close(L, j))
+                if (!movable(L, j)) continue;
+                if (close(L, j, bodies[j].x))
                 {
-                    candidates_.emplace_back(std::min(L, j), std::max(L, j));
+                    addPair(L, j, Domain::noImage);
+                }
+                if (!periodic) continue;
+                for (int image = 0; image < 9; ++image)
+                {
+                    if (image == Domain::noImage) continue;
+                    const Vec3 s = domain->shift(image);
+                    if ((s.x() != 0 && !domain->periodic(0)) || (s.y() != 0 && !domain->periodic(1)))
+                    {
+                        continue;
+                    }
+                    if (close(L, j, bodies[j].x + s)) addPair(L, j, image);
                 }
             }
         }
@@ -182,41 +226,99 @@ void NeighbourList::build(const World& world)
             const double d = walls[w].normal.dot(bodies[i].x - walls[w].point);
             if (d < R[i] + skin_)
             {
-                candidates_.emplace_back(i, -1 - w);
+                candidates_.push_back({i, -1 - w, Domain::noImage});
             }
         }
     }
 
+    auto key = [N](const Candidate& c) { return pairKey(c.i, c.j, c.image, N); };
     std::sort
     (
         candidates_.begin(), candidates_.end(),
-        [N](const std::pair<int, int>& a, const std::pair<int, int>& b)
-        {
-            return pairKey(a.first, a.second, N) < pairKey(b.first, b.second, N);
-        }
+        [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); }
     );
-    candidates_.erase(std::unique(candidates_.begin(), candidates_.end()), candidates_.end());
+    candidates_.erase
+    (
+        std::unique
+        (
+            candidates_.begin(), candidates_.end(),
+            [&key](const Candidate& a, const Candidate& b) { return key(a) == key(b); }
+        ),
+        candidates_.end()
+    );
+
+    // Pairs of bodies wrapped since the last build (periodic domain): the
+    // image of j relative to i changes by the wraps, and a feature-pair
+    // list's poses (i's and j's image) move with body i
+    const std::vector<int>& wraps = world.wraps();
+    std::vector<std::pair<long long, int>> oldOrder;
+    bool wrapped = false;
+    if (periodic && int(wraps.size()) == N && coversBodies(N))
+    {
+        for (int w : wraps) wrapped = wrapped || w != Domain::noImage;
+    }
+    if (wrapped)
+    {
+        oldOrder.reserve(pairs_.size());
+        for (int k = 0; k < int(pairs_.size()); ++k)
+        {
+            ContactPair& p = pairs_[k];
+            const int wi = wraps[p.i];
+            const int wj = p.isWall() ? Domain::noImage : wraps[p.j];
+            if (wi == Domain::noImage && wj == Domain::noImage)
+            {
+                oldOrder.emplace_back(pairKey(p.i, p.j, p.image, N), k);
+                continue;
+            }
+            int image = p.image;
+            if (!p.isWall())
+            {
+                image = Domain::compose(Domain::compose(p.image, wi), Domain::inverse(wj));
+            }
+            if (image < 0) continue;    // out of reach: its history ends
+            p.image = image;
+            if (p.featureList >= 0)
+            {
+                const Vec3 s = domain->shift(wi);
+                lists_[p.featureList].xA += s;
+                lists_[p.featureList].xB += s;
+            }
+            oldOrder.emplace_back(pairKey(p.i, p.j, p.image, N), k);
+        }
+        std::sort(oldOrder.begin(), oldOrder.end());
+    }
 
     // New pairs, carrying over the contacts of pairs that persist. Their
     // separation certificates move to the new reference poses: less the
     // motion since the last build (track() ran for every body this step
     // when the list covered the bodies; otherwise they start anew)
     const bool carryCertificates = coversBodies(N);
+    const std::size_t nOld = wrapped ? oldOrder.size() : pairs_.size();
+    auto oldPair = [&](std::size_t k) -> const ContactPair&
+    {
+        return wrapped ? pairs_[oldOrder[k].second] : pairs_[k];
+    };
+    auto oldKey = [&](std::size_t k)
+    {
+        if (wrapped) return oldOrder[k].first;
+        return pairKey(pairs_[k].i, pairs_[k].j, pairs_[k].image, N);
+    };
     std::vector<ContactPair> next(candidates_.size());
     std::size_t old = 0;
     for (std::size_t k = 0; k < candidates_.size(); ++k)
     {
         ContactPair& p = next[k];
-        p.i = candidates_[k].first;
-        p.j = candidates_[k].second;
-        const long long key = pairKey(p.i, p.j, N);
-        while (old < pairs_.size() && pairKey(pairs_[old].i, pairs_[old].j, N) < key)
+        p.i = candidates_[k].i;
+        p.j = candidates_[k].j;
+        p.image = candidates_[k].image;
+        const long long key = pairKey(p.i, p.j, p.image, N);
+        while (old < nOld && oldKey(old) < key)
         {
             ++old;
         }
-        if (old < pairs_.size() && pairKey(pairs_[old].i, pairs_[old].j, N) == key)
+        if (old < nOld && oldKey(old) == key)
         {
-            p = pairs_[old];
+            p = oldPair(old);
             p.clearance = carryCertificates
                 ? p.clearance - motion(p)
                 : std::numeric_limits<double>::lowest();

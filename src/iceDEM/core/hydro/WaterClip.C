@@ -127,7 +127,7 @@ void addClippedTetrahedron(const Vec3 p[4], const double s[4], VolumeSum& sum)
 } // anonymous namespace
 
 
-SubmergedVolume submergedVolume
+SubmergedVolume submergedVolumeByTetrahedra
 (
     const PolyhedronView& P,
     const Mat3& R,
@@ -194,6 +194,253 @@ SubmergedVolume submergedVolume
     {
         result.volume = sum.volume;
         result.centroid = R*(centre + sum.first/sum.volume) + x;
+    }
+    return result;
+}
+
+
+int clipNegative
+(
+    const Vec3* p,
+    const double* s,
+    int n,
+    Vec3* out,
+    double* sOut
+)
+{
+    int m = 0;
+    int prev = n - 1;
+    for (int k = 0; k < n; ++k)
+    {
+        if (s[k] < 0)
+        {
+            if (s[prev] >= 0)
+            {
+                const double t = s[k]/(s[k] - s[prev]);
+                out[m] = p[k] + t*(p[prev] - p[k]);
+                sOut[m] = 0;
+                ++m;
+            }
+            out[m] = p[k];
+            sOut[m] = s[k];
+            ++m;
+        }
+        else if (s[prev] < 0)
+        {
+            const double t = s[prev]/(s[prev] - s[k]);
+            out[m] = p[prev] + t*(p[k] - p[prev]);
+            sOut[m] = 0;
+            ++m;
+        }
+        prev = k;
+    }
+    return m < 3 ? 0 : m;
+}
+
+
+int truncatedPrismBottom
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const double* h
+)
+{
+    // The cap candidate: the face whose normal is nearest the vertical
+    // (the bottom or the top of a floating floe, whatever its outline)
+    const int nf = static_cast<int>(P.faces().size());
+    const Vec3 up = R.row(2).transpose();
+    int cap0 = 0;
+    double best = -1;
+    for (int f = 0; f < nf; ++f)
+    {
+        const double c = std::abs(up.dot(P.faces()[f].normal));
+        if (c > best)
+        {
+            best = c;
+            cap0 = f;
+        }
+    }
+    const Vec3& axis = P.faces()[cap0].normal;
+    int cap1 = -1;
+    for (int f = 0; f < nf; ++f)
+    {
+        if (f == cap0) continue;
+        const double d = P.faces()[f].normal.dot(axis);
+        if (d < -1 + prismTolerance && cap1 < 0)
+        {
+            cap1 = f;
+        }
+        else if (std::abs(d) > prismTolerance)
+        {
+            return -1;
+        }
+    }
+    if (cap1 < 0)
+    {
+        return -1;
+    }
+    // The lower cap entirely below, the upper one not at all
+    const double nz = up.dot(axis);
+    const int bottom = nz < 0 ? cap0 : cap1;
+    const int top = nz < 0 ? cap1 : cap0;
+    for (int k = 0; k < P.faces()[bottom].count; ++k)
+    {
+        if (!(h[P.faceVertex(bottom, k)] < 0)) return -1;
+    }
+    for (int k = 0; k < P.faces()[top].count; ++k)
+    {
+        if (h[P.faceVertex(top, k)] < 0) return -1;
+    }
+    return bottom;
+}
+
+
+SubmergedVolume submergedVolume
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const Vec3& x,
+    double level
+)
+{
+    const auto V = P.vertices();
+    const int nv = static_cast<int>(V.size());
+    if (nv > maxClipVertices)
+    {
+        return submergedVolumeByTetrahedra(P, R, x, level);
+    }
+
+    SubmergedVolume result;
+    result.volume = 0;
+    result.centroid = x;
+
+    // World-frame vertices relative to x (round-off scales with the size of
+    // the body, not with its distance from the origin) and their heights
+    // h = z - level
+    Vec3 r[maxClipVertices];
+    double h[maxClipVertices];
+    const double h0 = x.z() - level;
+    double hMin = std::numeric_limits<double>::max();
+    double hMax = -hMin;
+    for (int k = 0; k < nv; ++k)
+    {
+        r[k] = R*V[k];
+        h[k] = r[k].z() + h0;
+        hMin = std::min(hMin, h[k]);
+        hMax = std::max(hMax, h[k]);
+    }
+    if (!(hMin < 0))
+    {
+        return result;
+    }
+    if (hMax < 0)
+    {
+        // Entirely below: every face counts, and the sums above cancel to
+        // the body's own volume; the tetrahedra give it without the
+        // cancellation
+        return submergedVolumeByTetrahedra(P, R, x, level);
+    }
+
+    const int nf = static_cast<int>(P.faces().size());
+
+    // A right prism (a floe) cut across its sides only: the truncated
+    // prism. With the field h a (a the prism's axis, out of the bottom cap),
+    // the sides (a.n = 0) drop out of the divergence theorem as the water
+    // plane does: a length l = -h/a_z along a above every bottom point,
+    //   V = int_bottom l dA,  int r dV = int_bottom (r l + a l^2/2) dA.
+    {
+        const int bottom = truncatedPrismBottom(P, R, h);
+        if (bottom >= 0)
+        {
+            const Vec3 nb = R*P.faces()[bottom].normal;
+            const double az = -nb.z();
+            const int n = P.faces()[bottom].count;
+            const Vec3& a = r[P.faceVertex(bottom, 0)];
+            const double ha = h[P.faceVertex(bottom, 0)];
+            double I0 = 0, I2 = 0;
+            Vec3 I1 = Vec3::Zero();
+            for (int k = 1; k + 1 < n; ++k)
+            {
+                const int vb = P.faceVertex(bottom, k);
+                const int vc = P.faceVertex(bottom, k + 1);
+                const Vec3& b = r[vb];
+                const Vec3& c = r[vc];
+                const double hb = h[vb], hc = h[vc];
+                const double A = 0.5*((b - a).cross(c - a)).dot(nb);
+                const double sh = ha + hb + hc;
+                I0 += A*sh/3.0;
+                I1 += (A/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+                I2 += (A/6.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+            }
+            const double vol = -I0/az;
+            if (vol > 0)
+            {
+                result.volume = vol;
+                result.centroid =
+                    x + (-I1/az - (0.5*I2/(az*az))*nb)/vol;
+            }
+            return result;
+        }
+    }
+
+    constexpr int cap = SubmergedFace::maxVertices;
+    Vec3 p[cap];
+    double s[cap];
+    Vec3 q[cap];
+    double hq[cap];
+
+    double vol = 0;         // sum n_z int h dA
+    Vec3 first = Vec3::Zero();  // sum n_z int h r dA (x, y used)
+    double second = 0;      // sum n_z int h^2/2 dA
+
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        if (n + 1 > cap)
+        {
+            return submergedVolumeByTetrahedra(P, R, x, level);
+        }
+        int nBelow = 0;
+        for (int k = 0; k < n; ++k)
+        {
+            const int v = P.faceVertex(f, k);
+            p[k] = r[v];
+            s[k] = h[v];
+            nBelow += s[k] < 0;
+        }
+        if (nBelow == 0)
+        {
+            continue;
+        }
+        // A face entirely below is its own clipped polygon
+        const bool whole = nBelow == n;
+        const int m = whole ? n : clipNegative(p, s, n, q, hq);
+        const Vec3* qq = whole ? p : q;
+        const double* hh = whole ? s : hq;
+
+        // Fan from vertex 0; (q1 - q0) x (q2 - q0) . e_z = 2 A n_z
+        for (int k = 1; k + 1 < m; ++k)
+        {
+            const Vec3& a = qq[0];
+            const Vec3& b = qq[k];
+            const Vec3& c = qq[k + 1];
+            const double az =
+                0.5*((b.x() - a.x())*(c.y() - a.y())
+               - (b.y() - a.y())*(c.x() - a.x()));
+            const double ha = hh[0], hb = hh[k], hc = hh[k + 1];
+            const double sh = ha + hb + hc;
+            vol += az*sh/3.0;
+            first += (az/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+            second +=
+                (az/12.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+        }
+    }
+
+    if (vol > 0)
+    {
+        result.volume = vol;
+        result.centroid =
+            x + Vec3(first.x()/vol, first.y()/vol, second/vol - h0);
     }
     return result;
 }

@@ -6,6 +6,12 @@
 #include "dictionaryChecks.H"
 #include "error.H"
 #include "SortableList.H"
+#include "IFstream.H"
+#include "DynamicList.H"
+#include "HashTable.H"
+#include "token.H"
+
+#include <cstring>
 
 // * * * * * * * * * * * * * * * * Functions * * * * * * * * * * * * * * * //
 
@@ -223,6 +229,157 @@ Foam::tensor Foam::iceDEMChecks::rotationTensor
             << exit(FatalIOError);
     }
     return R;
+}
+
+
+void Foam::iceDEMChecks::checkDuplicateKeywords
+(
+    const dictionary& dict,
+    const fileName& file
+)
+{
+    IFstream is(file);
+    if (!is.good())
+    {
+        return;     // the reader has said what is wrong with the file
+    }
+
+    // Keywords seen (with their line) in every open dictionary
+    DynamicList<HashTable<label, word>> scopes(1);
+    DynamicList<word> scopeNames(1);
+    scopes.append(HashTable<label, word>());
+    scopeNames.append("the top level");
+
+    auto isPunct = [](const token& t, const char c)
+    {
+        return t.isPunctuation() && t.pToken() == c;
+    };
+
+    token t;
+    while (is.read(t).good() && !t.undefined())
+    {
+        if (isPunct(t, token::END_BLOCK))
+        {
+            if (scopes.size() > 1)
+            {
+                scopes.remove();
+                scopeNames.remove();
+            }
+            continue;
+        }
+        if (!t.isWord() && !t.isString())
+        {
+            continue;
+        }
+        const word key(t.isWord() ? t.wordToken() : word(t.stringToken(), false));
+        const label line = t.lineNumber();
+
+        // Directives (#include "file", #inputMode merge, ...) and $macros:
+        // skip their argument
+        if (key.size() && (key[0] == '#' || key[0] == '$'))
+        {
+            if (key[0] == '#')
+            {
+                is.read(t);
+            }
+            continue;
+        }
+
+        auto iter = scopes.last().find(key);
+        if (iter.found())
+        {
+            FatalIOErrorInFunction(dict)
+                << "Entry '" << key << "' is given twice in "
+                << scopeNames.last() << " of " << file << " (lines "
+                << iter.val() << " and " << line << "): the second would"
+                << " silently merge into the first. Give every entry a"
+                << " name of its own." << nl
+                << exit(FatalIOError);
+        }
+        scopes.last().insert(key, line);
+
+        // The value: a dictionary, or tokens up to ';' (lists may hold
+        // dictionaries)
+        if (!is.read(t).good())
+        {
+            break;
+        }
+        if (isPunct(t, token::BEGIN_BLOCK))
+        {
+            scopes.append(HashTable<label, word>());
+            scopeNames.append("'" + key + "'");
+            continue;
+        }
+        label depth = 0;
+        while (true)
+        {
+            if
+            (
+                isPunct(t, token::BEGIN_LIST) || isPunct(t, token::BEGIN_BLOCK)
+             || isPunct(t, token::BEGIN_SQR)
+            )
+            {
+                ++depth;
+            }
+            else if
+            (
+                isPunct(t, token::END_LIST) || isPunct(t, token::END_BLOCK)
+             || isPunct(t, token::END_SQR)
+            )
+            {
+                --depth;
+            }
+            else if (depth <= 0 && isPunct(t, token::END_STATEMENT))
+            {
+                break;
+            }
+            if (!is.read(t).good() || t.undefined())
+            {
+                return;
+            }
+        }
+    }
+}
+
+
+void Foam::iceDEMChecks::checkTimeControls(const Time& runTime)
+{
+    const dictionary& cd = runTime.controlDict();
+
+    const scalar dt = cd.get<scalar>("deltaT");
+    if (!(dt > 0) || !std::isfinite(dt))
+    {
+        FatalIOErrorInFunction(cd)
+            << "Entry 'deltaT' is " << dt << ": the time step must be a"
+            << " finite number > 0 (a zero or negative step never reaches"
+            << " endTime)" << nl
+            << exit(FatalIOError);
+    }
+
+    const scalar start = runTime.startTime().value();
+    const scalar end = runTime.endTime().value();
+    if (!std::isfinite(end))
+    {
+        FatalIOErrorInFunction(cd)
+            << "Entry 'endTime' is " << end << ": it must be a finite time"
+            << nl << exit(FatalIOError);
+    }
+    // Half a step of slack: the time names are rounded
+    if (end < start - 0.5*dt)
+    {
+        FatalIOErrorInFunction(cd)
+            << "Entry 'endTime' (" << end << ") is before the start time "
+            << start << " (startFrom "
+            << cd.getOrDefault<word>("startFrom", "startTime")
+            << "): nothing would run" << nl
+            << exit(FatalIOError);
+    }
+    if (end < start + 0.5*dt)
+    {
+        IOWarningInFunction(cd)
+            << "Entry 'endTime' (" << end << ") is the start time " << start
+            << ": no step is run" << nl << endl;
+    }
 }
 
 

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 using namespace Foam::iceDEMChecks;
 
@@ -113,10 +114,9 @@ void Foam::iceDEMCase::readMaterials()
                 << exit(FatalIOError);
         }
         const dictionary& d = e.dict();
-        checkKeywords
+        checkEntries
         (
-            d,
-            {"density", "youngsModulus", "poissonsRatio"},
+            d, "constant/iceDEMProperties", {"materials/*"},
             "material " + name
         );
 
@@ -195,10 +195,9 @@ void Foam::iceDEMCase::readInteractions()
                 << exit(FatalIOError);
         }
         const dictionary& d = e.dict();
-        checkKeywords
+        checkEntries
         (
-            d,
-            {"materials", "friction", "restitution"},
+            d, "constant/iceDEMProperties", {"interactions/*"},
             "interaction " + name
         );
 
@@ -329,7 +328,10 @@ void Foam::iceDEMCase::readWalls()
                 << exit(FatalIOError);
         }
         const dictionary& d = e.dict();
-        checkKeywords(d, {"point", "normal", "material"}, "wall " + name);
+        checkEntries
+        (
+            d, "constant/iceDEMProperties", {"walls/*"}, "wall " + name
+        );
 
         ::iceDEM::Wall w;
         w.name = name;
@@ -339,6 +341,113 @@ void Foam::iceDEMCase::readWalls()
 
         coreCall(d, "wall " + name, [&]{ world_->addWall(w); });
         wallNames_.append(name);
+    }
+}
+
+
+void Foam::iceDEMCase::checkDerived() const
+{
+    const auto& mats = world_->materials();
+    const dictionary& matDicts = properties_.subDict("materials");
+
+    auto finitePositive = [](double x) { return x > 0 && std::isfinite(x); };
+
+    // Effective moduli of every pair of materials
+    for (size_t a = 0; a < mats.size(); ++a)
+    {
+        for (size_t b = a; b < mats.size(); ++b)
+        {
+            const ::iceDEM::PairCoefficients c =
+                ::iceDEM::PairCoefficients::make
+                (
+                    mats[a], mats[b], ::iceDEM::PairProperties()
+                );
+            if (!finitePositive(c.Estar) || !finitePositive(c.Gstar))
+            {
+                FatalIOErrorInFunction(matDicts.subDict(mats[b].name))
+                    << "Entries 'youngsModulus' of materials "
+                    << mats[a].name.c_str() << " (" << mats[a].youngsModulus
+                    << ") and " << mats[b].name.c_str() << " ("
+                    << mats[b].youngsModulus << "): the effective moduli"
+                    << " E* = " << c.Estar << ", G* = " << c.Gstar
+                    << " overflow or underflow double precision" << nl
+                    << exit(FatalIOError);
+            }
+        }
+    }
+
+    // Masses and inertia of the bodies
+    const dictionary& bodyDicts = iceField_.subDict("bodies");
+    const auto& bodies = world_->bodies();
+    for (size_t i = 0; i < bodies.size(); ++i)
+    {
+        const ::iceDEM::Body& b = bodies[i];
+        if
+        (
+            !finitePositive(b.mass)
+         || !finitePositive(b.invInertia.minCoeff())
+         || !std::isfinite(b.invInertia.maxCoeff())
+         || !b.x.allFinite() || !b.v.allFinite() || !b.L.allFinite()
+        )
+        {
+            const word& name = bodyNames_[i];
+            FatalIOErrorInFunction(bodyDicts.subDict(name))
+                << "Body " << name << ": mass " << b.mass
+                << ", inverse principal moments of inertia ("
+                << b.invInertia.x() << ' ' << b.invInertia.y() << ' '
+                << b.invInertia.z() << ") from the entry 'density' ("
+                << mats[b.material].density << ") of material "
+                << mats[b.material].name.c_str()
+                << " in constant/iceDEMProperties and the body's size,"
+                << " position, velocity or omega here: not finite and"
+                << " positive in double precision" << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    // Energies (squares of the speeds) and positions the contact detection
+    // can resolve: |x| eps below the dilation radius
+    for (size_t i = 0; i < bodies.size(); ++i)
+    {
+        const ::iceDEM::Body& b = bodies[i];
+        const scalar energy =
+            0.5*b.mass*b.v.squaredNorm() + 0.5*b.omega().dot(b.L);
+        const scalar r = world_->shapeOf(int(i)).radius();
+        const word& name = bodyNames_[i];
+        if (!std::isfinite(energy))
+        {
+            FatalIOErrorInFunction(bodyDicts.subDict(name))
+                << "Body " << name << ": entries 'velocity' and 'omega' give"
+                << " a kinetic energy beyond double precision" << nl
+                << exit(FatalIOError);
+        }
+        if (!(b.x.norm()*std::numeric_limits<double>::epsilon() < r))
+        {
+            FatalIOErrorInFunction(bodyDicts.subDict(name))
+                << "Body " << name << ": its position (entries 'centre',"
+                << " 'outline', 'zBottom' or 'points') is too far from the"
+                << " origin for double precision to resolve its dilation"
+                << " radius " << r << " (|x| eps < radius)" << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    // The Hertz contact time that the time-step check uses
+    if (bodies.size())
+    {
+        // The core starts from the largest double: left there, a body's
+        // estimate overflowed (or was NaN)
+        const scalar tc = world_->estimatedContactTime();
+        if (!finitePositive(tc) || tc >= std::numeric_limits<double>::max())
+        {
+            FatalIOErrorInFunction(matDicts)
+                << "The Hertz contact time estimate over- or underflows"
+                << " double precision (" << tc << " s): the"
+                << " entries 'youngsModulus' and 'density' of the materials"
+                << " (or 'contactCheckVelocity') are beyond what double"
+                << " precision resolves" << nl
+                << exit(FatalIOError);
+        }
     }
 }
 
@@ -401,20 +510,15 @@ Foam::iceDEMCase::iceDEMCase
     dragType_("none"),
     restarted_(false)
 {
-    checkKeywords
+    // OpenFOAM merges a keyword given twice: two bodies of one name
+    checkDuplicateKeywords(properties_, properties_.objectPath());
+    checkDuplicateKeywords(iceField_, iceField_.objectPath());
+
+    checkEntries
     (
-        properties_,
-        {
-            "deltaT", "contactModel", "tangentialModel",
-            "tangentialStiffnessRatio", "maxEdgeRadiusRatio",
-            "parallelEdgeSin", "massModel", "neighbourSkin", "featureSkin",
-            "contactCheckVelocity", "contactStepsWarn", "contactStepsMin",
-            "materials", "interactions", "walls", "water", "drag", "output",
-            "wind", "floeDamping",
-            "structure", "coupling"
-        },
-        "constant/iceDEMProperties"
+        properties_, "constant/iceDEMProperties", {""}, "the top level"
     );
+    checkEntries(iceField_, "constant/iceField", {""}, "the top level");
 
     // Gravity: constant/g as in every OpenFOAM case
     {
@@ -457,11 +561,17 @@ Foam::iceDEMCase::iceDEMCase
         )
     );
 
-    readMaterials();
-    readWalls();
-    readBodies();
-    readInteractions();
-    readWater(resolvedFlow);
+    {
+        // Masses and inertia of huge entries overflow here: checked below
+        floatingPointHold hold;
+        readMaterials();
+        readWalls();
+        readBodies();
+        readInteractions();
+        readWater(resolvedFlow);
+        readDomain();
+        checkDerived();
+    }
 
     Info<< "iceDEM: " << bodyNames_.size() << " bodies, "
         << wallNames_.size() << " walls, " << materialIndex_.size()
@@ -635,6 +745,27 @@ void Foam::iceDEMCase::start()
 }
 
 
+void Foam::iceDEMCase::addStepObserver
+(
+    const std::shared_ptr<stepObserver>& o
+) const
+{
+    observers_.push_back(o);
+}
+
+
+void Foam::iceDEMCase::stepDone(scalar h) const
+{
+    for (const auto& w : observers_)
+    {
+        if (const auto o = w.lock())
+        {
+            o->demStep(*this, h);
+        }
+    }
+}
+
+
 void Foam::iceDEMCase::advanceTo(scalar t)
 {
     ::iceDEM::World& w = *world_;
@@ -653,7 +784,8 @@ void Foam::iceDEMCase::advanceTo(scalar t)
     {
         while (t - w.time() > tol)
         {
-            const scalar remaining = t - w.time();
+            const scalar tPrev = w.time();
+            const scalar remaining = t - tPrev;
             const bool last = remaining < dt + tol;
 
             if (move)
@@ -674,6 +806,7 @@ void Foam::iceDEMCase::advanceTo(scalar t)
             {
                 w.advanceTo(t);
             }
+            stepDone((last ? t : w.time()) - tPrev);
         }
         w.setTime(t);
         w.checkFinite();

@@ -105,42 +105,16 @@ void Foam::iceDEMCase::readBodies()
         const word type =
             selectName(d, "type", wordList({"box", "prism", "polyhedron"}));
 
-        if (type == "box")
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "halfExtents", "centre", "orientation",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
-        else if (type == "prism")
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "outline", "zBottom", "thickness",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
-        else
-        {
-            checkKeywords
-            (
-                d,
-                {
-                    "type", "points", "centre", "orientation",
-                    "radius", "material", "motion", "velocity", "omega"
-                },
-                what
-            );
-        }
+        checkEntries
+        (
+            d, "constant/iceField",
+            {
+                type == "box" ? "bodies/*(type box)"
+              : type == "prism" ? "bodies/*(type prism)"
+              : "bodies/*(type polyhedron)"
+            },
+            what
+        );
 
         const scalar r = positive(d, "radius");
         const label material = materialOf(d);
@@ -176,7 +150,7 @@ void Foam::iceDEMCase::readBodies()
             }
             core = coreCall
             (
-                d, what,
+                d, what + ", entry 'halfExtents'",
                 [&]{ return ::iceDEM::ConvexPolyhedron::box(toVec3(h - vector::uniform(r))); }
             );
             position = toVec3(d.get<vector>("centre"));
@@ -197,7 +171,7 @@ void Foam::iceDEMCase::readBodies()
             }
             core = coreCall
             (
-                d, what,
+                d, what + ", entries 'outline', 'zBottom', 'thickness'",
                 [&]{ return ::iceDEM::floeCore(pts, zBottom, thickness, r); }
             );
             // The core is in world coordinates
@@ -261,8 +235,10 @@ void Foam::iceDEMCase::readBodies()
 
     if (bodyNames_.empty())
     {
-        IOWarningInFunction(bodies)
-            << "No body in 'bodies'" << nl << endl;
+        FatalIOErrorInFunction(bodies)
+            << "No body in 'bodies': there is nothing to simulate (a"
+            << " structure alone moves without constant/iceDEMProperties)"
+            << nl << exit(FatalIOError);
     }
 }
 

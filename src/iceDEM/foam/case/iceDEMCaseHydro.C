@@ -142,13 +142,44 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
     }
 
     const dictionary& wd = properties_.subDict("water");
-    checkKeywords(wd, {"density", "level"}, "water");
+    checkEntries(wd, "constant/iceDEMProperties", {"water"}, "water");
 
     ::iceDEM::WaterSettings water;
     water.density = positive(wd, "density", 1025);
     water.level = wd.getOrDefault<scalar>("level", 0);
 
     coreCall(wd, "water", [&]{ ::iceDEM::checkWaterSettings(water); });
+
+    // Free bodies denser than the water sink: legitimate for a block on a
+    // floor, a mistake for ice (e.g. densities swapped), so say it
+    {
+        std::vector<label> sinking(world_->materials().size(), 0);
+        for (const ::iceDEM::Body& b : world_->bodies())
+        {
+            if
+            (
+                b.isFree()
+             && world_->materials()[b.material].density >= water.density
+            )
+            {
+                ++sinking[b.material];
+            }
+        }
+        for (size_t m = 0; m < sinking.size(); ++m)
+        {
+            if (sinking[m])
+            {
+                IOWarningInFunction(wd)
+                    << "Entry 'density' (" << water.density << " kg/m3):"
+                    << " the water is not denser than " << sinking[m]
+                    << " free bodies of material "
+                    << world_->materials()[m].name.c_str() << " (density "
+                    << world_->materials()[m].density << " kg/m3 in"
+                    << " constant/iceDEMProperties): they do not float" << nl
+                    << endl;
+            }
+        }
+    }
     world_->addForceModel(std::make_shared<::iceDEM::Buoyancy>(water));
     water_ = true;
 
@@ -161,15 +192,10 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
     }
 
     const dictionary& dd = properties_.subDict("drag");
-    checkKeywords
+    // The entries of type resolved may stay when the type is switched
+    checkEntries
     (
-        dd,
-        {
-            "type", "current", "U", "formCoefficient", "skinCoefficient",
-            "subdivision", "bottomCosine",
-            // resolved only (resolvedFlowVelocity)
-            "maxWalk", "interpolation", "sampling", "twoWay"
-        },
+        dd, "constant/iceDEMProperties", {"drag", "drag(type resolved)"},
         "drag"
     );
 
@@ -191,6 +217,13 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
             << "Entry 'bottomCosine' is " << drag.bottomCosine
             << ": it must lie in (0, 1]" << nl
             << exit(FatalIOError);
+    }
+    if (dd.found("integration"))
+    {
+        drag.integration = ::iceDEM::dragIntegrationFromName
+        (
+            selectName(dd, "integration", wordList({"exact", "sampled"}))
+        );
     }
     coreCall(dd, "drag", [&]{ ::iceDEM::checkDragSettings(drag); });
 

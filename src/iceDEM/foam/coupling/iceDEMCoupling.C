@@ -17,6 +17,7 @@
 #include "IOdictionary.H"
 #include "OSspecific.H"
 #include "boundBox.H"
+#include "postProcessingFile.H"
 
 using namespace Foam::iceDEMChecks;
 
@@ -126,7 +127,7 @@ std::vector<::iceDEM::Vec3> worldCoreVertices
 
 void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
 {
-    checkKeywords(sd, {"material", "radius", "dict"}, "structure");
+    checkEntries(sd, "constant/iceDEMProperties", {"structure"}, "structure");
 
     ::iceDEM::World& w = case_->world();
 
@@ -146,6 +147,12 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
     }
     const scalar r = positive(sd, "radius");
     const word dictName = sd.getOrDefault<word>("dict", "structureDict");
+    if (!isFile(runTime_.globalPath()/"constant"/dictName))
+    {
+        FatalIOErrorInFunction(sd)
+            << "Entry 'dict': no file constant/" << dictName << " (the"
+            << " structure dictionary)" << nl << exit(FatalIOError);
+    }
 
     // The one definition of the structure (the case root's constant/, also
     // in parallel)
@@ -493,8 +500,11 @@ void Foam::iceDEMCoupling::checkRestraint() const
         return;
     }
     const IOdictionary dmd(io);
-    const dictionary& coeffs =
-        dmd.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+    const dictionary& coeffs = dmd.optionalSubDict
+    (
+        dmd.getOrDefault<word>("motionSolver", "sixDoFRigidBodyMotion")
+      + "Coeffs"
+    );
     const dictionary* rd = coeffs.findDict("restraints");
 
     bool found = false;
@@ -573,7 +583,10 @@ Foam::iceDEMCoupling::iceDEMCoupling
     if (props.found("coupling", keyType::LITERAL))
     {
         const dictionary& cd = props.subDict("coupling");
-        checkKeywords(cd, {"force", "moment"}, "coupling");
+        checkEntries
+        (
+            cd, "constant/iceDEMProperties", {"coupling"}, "coupling"
+        );
         forceName = cd.getOrDefault<word>("force", forceName);
         momentName = cd.getOrDefault<word>("moment", momentName);
     }
@@ -689,7 +702,10 @@ Foam::iceDEMCoupling::iceDEMCoupling
            /runTime.timeName(runTime.startTime().value())
         );
         mkDir(dir);
-        loadFile_.reset(new OFstream(dir/"iceLoad.dat"));
+        loadFile_.reset
+        (
+            new OFstream(newOutputFile(runTime, dir, "iceLoad.dat"))
+        );
         loadFile_().precision
         (
             case_->outputDict().getOrDefault<label>("precision", 12)
@@ -809,6 +825,7 @@ void Foam::iceDEMCoupling::solve()
             }
 
             const scalar h = (last ? t1 : w.time()) - tPrev;
+            case_->stepDone(h);
 
             ::iceDEM::Vec3 F = ::iceDEM::Vec3::Zero();
             ::iceDEM::Vec3 M = ::iceDEM::Vec3::Zero();

@@ -5,6 +5,7 @@
 
 #include "iceDEMOutput.H"
 #include "dictionaryChecks.H"
+#include "postProcessingFile.H"
 
 #include "OSspecific.H"
 #include "Pstream.H"
@@ -92,12 +93,10 @@ Foam::iceDEMOutput::iceDEMOutput(const iceDEMCase& demCase)
     lastBodiesTime_(-GREAT)
 {
     const dictionary& d = demCase.outputDict();
-    checkKeywords
-    (
-        d,
-        {"precision", "vtk", "vtkSurface", "vtkResolution", "vtkFormat"},
-        "output of constant/iceDEMProperties"
-    );
+    if (demCase.properties().isDict("output"))
+    {
+        checkEntries(d, "constant/iceDEMProperties", {"output"}, "output");
+    }
 
     precision_ = labelInRange(d, "precision", 4, 17, 12);
     vtk_ = d.getOrDefault<bool>("vtk", true);
@@ -121,12 +120,18 @@ Foam::iceDEMOutput::iceDEMOutput(const iceDEMCase& demCase)
     {
         mkDir(dir_);
 
-        bodiesFile_.reset(new OFstream(dir_/"bodies.dat"));
+        bodiesFile_.reset
+        (
+            new OFstream(newOutputFile(demCase.time(), dir_, "bodies.dat"))
+        );
         bodiesFile_().precision(precision_);
         bodiesFile_()
             << "# time id x y z vx vy vz wx wy wz qw qx qy qz" << endl;
 
-        energyFile_.reset(new OFstream(dir_/"energy.dat"));
+        energyFile_.reset
+        (
+            new OFstream(newOutputFile(demCase.time(), dir_, "energy.dat"))
+        );
         energyFile_().precision(precision_);
         energyFile_()
             << "# time kinetic gravitational elastic contacts contactPairs"

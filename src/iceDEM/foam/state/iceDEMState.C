@@ -6,6 +6,7 @@
 #include "iceDEMState.H"
 #include "iceDEMCase.H"
 #include "dictionaryChecks.H"
+#include "completeTime.H"
 
 #include "FixedList.H"
 #include "vectorList.H"
@@ -211,10 +212,14 @@ bool Foam::iceDEMState::writeObject
     IOstream::streamFormat,
     IOstream::versionNumber ver,
     IOstream::compressionType cmp,
-    const bool valid
+    const bool
 ) const
 {
-    return regIOobject::writeObject(IOstream::ASCII, ver, cmp, valid);
+    // Into the current time directory (as regIOobject::writeObject does)
+    const_cast<iceDEMState&>(*this).instance() = time().timeName();
+
+    // Beside, then renamed into place: a kill never leaves half a state
+    return completeTime::atomicWrite(*this, IOstream::ASCII, ver, cmp);
 }
 
 

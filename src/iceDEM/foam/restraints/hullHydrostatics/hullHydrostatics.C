@@ -11,6 +11,7 @@
 
 #include "hullHydrostatics.H"
 #include "addToRunTimeSelectionTable.H"
+#include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "uniformDimensionedFields.H"
 #include "IFstream.H"
@@ -150,6 +151,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::read
 )
 {
     sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
+    iceDEMChecks::checkEntries
+    (
+        sDoFRBMRCoeffs_, "constant/dynamicMeshDict",
+        {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint hullHydrostatics)"},
+        "restraint " + name_
+    );
 
     structureFile_ = sDoFRBMRCoeffs_.lookupOrDefault<fileName>
     (

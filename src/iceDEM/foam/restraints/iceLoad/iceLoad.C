@@ -11,6 +11,7 @@
 
 #include "iceLoad.H"
 #include "addToRunTimeSelectionTable.H"
+#include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "uniformDimensionedFields.H"
 
@@ -108,6 +109,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::iceLoad::read
 )
 {
     sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
+    iceDEMChecks::checkEntries
+    (
+        sDoFRBMRCoeffs_, "constant/dynamicMeshDict",
+        {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint iceLoad)"},
+        "restraint " + name_
+    );
 
     forceName_ = sDoFRBMRCoeffs_.lookupOrDefault<word>("force", "iceLoadForce");
     momentName_ =

@@ -10,11 +10,14 @@
 \*---------------------------------------------------------------------------*/
 
 #include "spreadMooring.H"
+#include "IOField.H"
 #include "addToRunTimeSelectionTable.H"
+#include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
 #include "mathematicalConstants.H"
 #include "OSspecific.H"
 #include "unitConversion.H"
+#include "postProcessingFile.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -139,6 +142,10 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::open
     if (isFile(file))
     {
         file = dir/("tensions_" + runTime.timeName() + ".dat");
+    }
+    else
+    {
+        warnRowsBeyondStart(runTime, dir, "tensions.dat");
     }
 
     file_.reset(new OFstream(file));
@@ -316,6 +323,33 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
         restraintMoment += (f - CofR) ^ F;
     }
 
+    // The tensions on the Time database for function objects
+    // (iceLoadStatistics): an unwritten scalar field '<restraint>:tensions'
+    {
+        const word key(name_ + ":tensions");
+        if (runTime.foundObject<IOField<scalar>>(key))
+        {
+            runTime.lookupObjectRef<IOField<scalar>>(key) = T;
+        }
+        else
+        {
+            IOField<scalar>* reg = new IOField<scalar>
+            (
+                IOobject
+                (
+                    key,
+                    runTime.timeName(),
+                    runTime,
+                    IOobject::NO_READ,
+                    IOobject::NO_WRITE,
+                    true
+                ),
+                T
+            );
+            reg->store();
+        }
+    }
+
     // Output: one row per time step, the last evaluation of the step
     if (!file_.valid())
     {
@@ -344,6 +378,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
 )
 {
     sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
+    iceDEMChecks::checkEntries
+    (
+        sDoFRBMRCoeffs_, "constant/dynamicMeshDict",
+        {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint spreadMooring)"},
+        "restraint " + name_
+    );
 
     const bool hasLines = sDoFRBMRDict.found("lines");
     const bool hasSpread = sDoFRBMRDict.found("spread");
@@ -378,6 +418,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
         {
             dictionary lineDict(lines[i]);
             lineDict.name() = sDoFRBMRDict.name() + ".lines." + Foam::name(i);
+            iceDEMChecks::checkEntries
+            (
+                lineDict, "constant/dynamicMeshDict",
+                {"spreadMooring line"},
+                "line " + Foam::name(i) + " of restraint " + name_
+            );
             readLine
             (
                 lineDict,
@@ -390,6 +436,12 @@ bool Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::read
     else
     {
         const dictionary& dict = sDoFRBMRDict.subDict("spread");
+        iceDEMChecks::checkEntries
+        (
+            dict, "constant/dynamicMeshDict",
+            {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint spreadMooring)/spread"},
+            "spread of restraint " + name_
+        );
         const label n = dict.get<label>("nLines");
         if (n < 1)
         {

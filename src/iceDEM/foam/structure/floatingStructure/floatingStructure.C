@@ -11,6 +11,7 @@
 
 #include "floatingStructure.H"
 #include "IFstream.H"
+#include "caseEntries.H"
 #include "OFstream.H"
 #include "Tuple2.H"
 #include "vector2D.H"
@@ -588,7 +589,11 @@ Foam::floatingStructure::floatingStructure(const dictionary& dict)
             << exit(FatalIOError);
     }
 
+    using iceDEMChecks::checkEntries;
+    checkEntries(dict, "constant/structureDict", {""}, "the top level");
+
     const dictionary& waterDict = dict.subOrEmptyDict("water");
+    checkEntries(waterDict, "constant/structureDict", {"water"}, "water");
     rhoWater_ = waterDict.lookupOrDefault<scalar>("density", 1025);
     level_ = waterDict.lookupOrDefault<scalar>("level", 0);
     if (!(rhoWater_ > 0))
@@ -607,6 +612,11 @@ Foam::floatingStructure::floatingStructure(const dictionary& dict)
             << exit(FatalIOError);
     }
     const dictionary& shapeDict = dict.subDict(type_);
+    checkEntries
+    (
+        shapeDict, "constant/structureDict",
+        {type_ == "box" ? "box" : "facetedHull"}, type_
+    );
 
     if (type_ == "facetedHull")
     {

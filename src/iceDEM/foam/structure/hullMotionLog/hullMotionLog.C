@@ -14,6 +14,7 @@
 #include "quaternion.H"
 #include "OSspecific.H"
 #include "mathematicalConstants.H"
+#include "postProcessingFile.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -50,7 +51,7 @@ Foam::hullMotionLog::hullMotionLog(const Time& runTime)
            /runTime.timeName(runTime.startTime().value())
         );
         mkDir(dir);
-        file_.reset(new OFstream(dir/"motion.dat"));
+        file_.reset(new OFstream(newOutputFile(runTime, dir, "motion.dat")));
         file_().precision(10);
         file_()
             << "# Structure motion (sixDoFRigidBodyMotion)" << nl

@@ -9,6 +9,7 @@
 #include "structureMotion.H"
 #include "hullMotionLog.H"
 #include "iceDEMCoupling.H"
+#include "completeTimeWriter.H"
 
 #include <memory>
 
@@ -31,6 +32,9 @@ int Foam::runWithoutFlow(Time& runTime)
     {
         dem.reset(new iceDEMCoupling(runTime, nullptr, &body.motion()));
     }
+
+    // Write times marked complete last; SIGTERM: write and stop
+    completeTimeWriter writer(runTime);
 
     Info<< "\nStarting time loop\n" << endl;
 
@@ -56,11 +60,8 @@ int Foam::runWithoutFlow(Time& runTime)
         }
         motionLog.write(body.motion());
 
-        if (runTime.writeTime())
-        {
-            body.write();
-        }
-        runTime.write();
+        // The sixDoF state (not registered) written before the mark
+        writer.write([&]{ body.write(); });
     }
 
     Info<< "\nEnd\n" << endl;

@@ -11,20 +11,26 @@
 
 #include "structureMotion.H"
 #include "uniformDimensionedFields.H"
+#include "completeTime.H"
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
 const Foam::dictionary& Foam::structureMotion::coeffs() const
 {
     const word solver(dict_.get<word>("motionSolver"));
-    if (solver != "sixDoFRigidBodyMotion")
+    if
+    (
+        solver != "sixDoFRigidBodyMotion"
+     && solver != "rigidLidSixDoFRigidBodyMotion"
+    )
     {
         FatalIOErrorInFunction(dict_)
             << "Entry 'motionSolver " << solver << "' in " << dict_.name()
             << ": the structure motion needs 'motionSolver"
-            << " sixDoFRigidBodyMotion'." << nl << exit(FatalIOError);
+            << " sixDoFRigidBodyMotion' or 'rigidLidSixDoFRigidBodyMotion'."
+            << nl << exit(FatalIOError);
     }
-    return dict_.optionalSubDict("sixDoFRigidBodyMotionCoeffs");
+    return dict_.optionalSubDict(solver + "Coeffs");
 }
 
 
@@ -122,7 +128,13 @@ void Foam::structureMotion::write() const
         )
     );
     motion_->state().write(state);
-    state.regIOobject::write();
+    completeTime::atomicWrite
+    (
+        state,
+        runTime_.writeFormat(),
+        runTime_.writeVersion(),
+        runTime_.writeCompression()
+    );
 }
 
 

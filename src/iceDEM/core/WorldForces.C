@@ -1,0 +1,518 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "World.H"
+#include "worldDetail.H"
+#include "contact/NarrowPhase.H"
+#include "contact/NeighbourList.H"
+#include "prefetch.H"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace iceDEM
+{
+
+using namespace worldDetail;
+
+void World::resizeBodyFrames()
+{
+    const int N = static_cast<int>(bodies_.size());
+    if (int(vertexOffset_.size()) != N + 1)
+    {
+        vertexOffset_.assign(N + 1, 0);
+        for (int i = 0; i < N; ++i)
+        {
+            vertexOffset_[i + 1] =
+                vertexOffset_[i] + int(shapeOf(i).core().vertices().size());
+        }
+        worldVertices_.resize(vertexOffset_[N]);
+        omegas_.resize(N);
+        frameEvaluation_.reset(new std::atomic<long>[N]);
+        for (int i = 0; i < N; ++i) frameEvaluation_[i].store(0);
+    }
+}
+
+
+void World::updateBodyFrame(int i)
+{
+    const Body& b = bodies_[i];
+    const Mat3 R = b.rotation();
+    omegas_[i] = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
+    const auto& V = shapeOf(i).core().vertices();
+    Vec3* w = worldVertices_.data() + vertexOffset_[i];
+    for (std::size_t k = 0; k < V.size(); ++k)
+    {
+        w[k] = R*V[k] + b.x;
+    }
+}
+
+
+void World::ensureBodyFrame(int i)
+{
+    std::atomic<long>& stamp = frameEvaluation_[i];
+    long seen = stamp.load(std::memory_order_acquire);
+    if (seen == evaluation_) return;
+    if
+    (
+        seen != frameBusy
+     && stamp.compare_exchange_strong(seen, frameBusy, std::memory_order_acquire)
+    )
+    {
+        updateBodyFrame(i);
+        stamp.store(evaluation_, std::memory_order_release);
+        return;
+    }
+    // Another thread is computing it (a frame takes some 50 ns)
+    while (stamp.load(std::memory_order_acquire) != evaluation_) {}
+}
+
+
+void World::prefetchPair(const ContactPair& p) const
+{
+    // What the world frames and the separating-axis test read first: the
+    // two shapes' headers and vertices, and the world vertices (body j is
+    // anywhere in memory)
+    auto prefetchBody = [this](int i)
+    {
+        const auto& V = shapeOf(i).core().vertices();
+        const std::size_t bytes = V.size()*sizeof(Vec3);
+        prefetchRange(&shapeOf(i), sizeof(DilatedShape));
+        prefetchRange(V.data(), bytes);
+        prefetchRange(worldVertices(i), bytes);
+    };
+    prefetchBody(p.i);
+    if (!p.isWall()) prefetchBody(p.j);
+}
+
+
+void World::updateWorldVertices()
+{
+    resizeBodyFrames();
+    const int N = static_cast<int>(bodies_.size());
+    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
+    for (int i = 0; i < N; ++i)
+    {
+        updateBodyFrame(i);
+        frameEvaluation_[i].store(evaluation_);
+    }
+}
+
+
+int World::findPairContacts
+(
+    const ContactPair& p,
+    Vec3& axis,
+    FoundContact* found,
+    FeaturePairList* features,
+    double* separation
+) const
+{
+    const Body& bi = bodies_[p.i];
+    const BodyView A{&shapeOf(p.i), worldVertices(p.i), bi.rotation(), bi.x, bi.q};
+    if (p.isWall())
+    {
+        const Wall& w = walls_[p.wall()];
+        return findWallContacts(A, w.point, w.normal, found, maxContactsPerPair, separation);
+    }
+    Vec3 translated[maxShapeVertices];
+    const BodyView B = viewOfJ(p, translated);
+    NarrowPhaseSettings nps;
+    nps.parallelEdgeSin = settings_.parallelEdgeSin;
+    nps.featureSkin = featureSkin_;
+    return findContacts(A, B, nps, axis, found, maxContactsPerPair, features, separation);
+}
+
+
+BodyView World::viewOfJ(const ContactPair& p, Vec3* buffer) const
+{
+    const Body& bj = bodies_[p.j];
+    if (p.image == Domain::noImage)
+    {
+        return BodyView{&shapeOf(p.j), worldVertices(p.j), bj.rotation(), bj.x, bj.q};
+    }
+    // A ghost: j's world vertices and centroid translated by the image
+    const Vec3 s = domain_->shift(p.image);
+    const Vec3* w = worldVertices(p.j);
+    const int n = static_cast<int>(shapeOf(p.j).core().vertices().size());
+    for (int k = 0; k < n; ++k) buffer[k] = w[k] + s;
+    return BodyView{&shapeOf(p.j), buffer, bj.rotation(), bj.x + s, bj.q};
+}
+
+
+Vec3 World::centroidOfJ(const ContactPair& p) const
+{
+    const Vec3& x = bodies_[p.j].x;
+    return p.image == Domain::noImage ? x : Vec3(x + domain_->shift(p.image));
+}
+
+
+ContactResult World::contactForce
+(
+    const ContactPair& p,
+    const ContactGeometry& g,
+    Vec3& xi,
+    double dtTangential
+) const
+{
+    const Body& bi = bodies_[p.i];
+    const Body* bj = p.isWall() ? nullptr : &bodies_[p.j];
+    const int M = static_cast<int>(materials_.size());
+    const int matJ = bj ? bj->material : walls_[p.wall()].material;
+    const PairCoefficients& coeffs = pairCoeffs_[bi.material*M + matJ];
+
+    double mEff;
+    if (!bj || !bj->isFree()) mEff = bi.mass;
+    else if (!bi.isFree()) mEff = bj->mass;
+    else mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
+
+    const Vec3& x = g.point;
+    Vec3 vRel = -(bi.v + omegas_[p.i].cross(x - bi.x));
+    if (bj) vRel += bj->v + omegas_[p.j].cross(x - centroidOfJ(p));
+
+    return law_->evaluate(coeffs, g, mEff, vRel, xi, dtTangential);
+}
+
+
+void World::preparePairs()
+{
+    #ifdef _OPENMP
+    const int maxThreads = omp_get_max_threads();
+    #else
+    const int maxThreads = 1;
+    #endif
+    if (int(scratch_.size()) < maxThreads) scratch_.resize(maxThreads);
+    // All cleared here: the pools are sized from their sums, and a thread
+    // that is not in the next team must leave nothing behind
+    for (PairScratch& S : scratch_)
+    {
+        S.contacts.clear();
+        S.lists.clear();
+        S.entries.clear();
+    }
+    staged_.resize(nlist_->pairs().size());
+    chunkCounts_.resize(maxThreads);
+}
+
+
+void World::pairForces(double dtTangential)
+{
+    NeighbourList& nl = *nlist_;
+    auto& pairs = nl.pairs();
+    const int nPairs = static_cast<int>(pairs.size());
+
+    // Orphaned work-sharing: called inside a parallel region (or by one
+    // thread); staged_ and scratch_ are sized by preparePairs
+    {
+        // The pools are written below by static chunks of pairs
+        const ThreadShare share(nPairs);
+        const int thread = share.thread;
+        PairScratch& S = scratch_[thread];
+
+        FoundContact found[maxContactsPerPair];
+        std::uint32_t listBuffer[FeaturePairList::capacity];
+        // The pools of the last evaluation, read only in this loop
+        const StoredContact* oldContacts = nl.contacts().data();
+        const StoredFeatureList* oldLists = nl.featureLists().data();
+        const std::uint32_t* oldEntries = nl.listEntries().data();
+
+        // A pair's new feature-pair list into this thread's scratch; until
+        // the pool pass, the pair's featureList is its index there
+        auto stageList = [&S]
+        (
+            ContactPair& p,
+            StoredFeatureList L,
+            const std::uint32_t* from
+        )
+        {
+            p.featureList = static_cast<int>(S.lists.size());
+            L.firstEntry = static_cast<int>(S.entries.size());
+            S.lists.push_back(L);
+            S.entries.insert(S.entries.end(), from, from + L.count);
+        };
+
+        int searched = 0;
+        #pragma omp for schedule(dynamic, 64)
+        for (int k = 0; k < nPairs; ++k)
+        {
+            ContactPair& p = pairs[k];
+            if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
+            {
+                prefetchPair(pairs[k + prefetchAhead]);
+            }
+            // A pair whose separation certificate still holds cannot touch:
+            // no narrow phase (nor reads of its bodies' shapes and world
+            // vertices); its feature-pair list is kept as the narrow phase
+            // would keep it, after a separating axis. Most such pairs write
+            // nothing: their cache lines stay shared between the threads
+            if (nl.separated(p))
+            {
+                if (p.nContacts > 0) clearPairForces(p);
+                if (p.featureList >= 0)
+                {
+                    staged_[k] = {thread, 0};
+                    const StoredFeatureList& L = oldLists[p.featureList];
+                    stageList(p, L, oldEntries + L.firstEntry);
+                }
+                continue;
+            }
+            staged_[k] = {thread, static_cast<int>(S.contacts.size())};
+            ++searched;
+            ensureBodyFrame(p.i);
+            if (!p.isWall()) ensureBodyFrame(p.j);
+
+            FeaturePairList list;
+            list.buffer = listBuffer;
+            if (p.featureList >= 0)
+            {
+                const StoredFeatureList& L = oldLists[p.featureList];
+                list.count = L.count;
+                list.entries = oldEntries + L.firstEntry;
+                list.xA = L.xA;
+                list.xB = L.xB;
+                list.qA = L.qA;
+                list.qB = L.qB;
+                list.touched = p.nContacts > 0;
+            }
+            double separation = std::numeric_limits<double>::lowest();
+            const int nFound = findPairContacts
+            (
+                p, p.axis, found, p.isWall() ? nullptr : &list, &separation
+            );
+            if (nFound == 0) nl.certify(p, separation);
+
+            const StoredContact* previous = oldContacts + p.firstContact;
+            const int nPrev = p.nContacts;
+            clearPairForces(p);
+
+            for (int c = 0; c < nFound; ++c)
+            {
+                const FoundContact& fc = found[c];
+                StoredContact sc;
+                sc.featureI = fc.featureA;
+                sc.featureJ = fc.featureB;
+                sc.xi.setZero();
+                for (int m = 0; m < nPrev; ++m)
+                {
+                    if (previous[m].featureI == fc.featureA && previous[m].featureJ == fc.featureB)
+                    {
+                        sc.xi = previous[m].xi;
+                        break;
+                    }
+                }
+                const ContactResult r = contactForce(p, fc.g, sc.xi, dtTangential);
+                S.contacts.push_back(sc);
+                ++p.nContacts;
+
+                const Vec3& x = fc.g.point;
+                p.forceOnJ += r.forceOnJ;
+                p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ) - r.coupleOnJ;
+                if (!p.isWall()) p.torqueOnJ += (x - centroidOfJ(p)).cross(r.forceOnJ) + r.coupleOnJ;
+                p.elasticEnergy += r.elasticEnergy;
+                p.deepest = std::max(p.deepest, fc.g.overlap);
+            }
+
+            if (list.count >= 0)
+            {
+                StoredFeatureList L;
+                L.xA = list.xA;
+                L.xB = list.xB;
+                L.qA = list.qA;
+                L.qB = list.qB;
+                L.count = list.count;
+                stageList(p, L, list.entries);
+            }
+            else if (p.featureList >= 0)
+            {
+                p.featureList = -1;
+            }
+        }
+
+        // The new pools in pair order (independent of the thread count),
+        // written in parallel: each thread takes a static chunk of the
+        // pairs, whose offsets in the pools are the sums over the chunks
+        // before it. The pair loop's barrier made every count visible; the
+        // pools' sizes are the scratch totals, so one thread sizes them
+        // while the others count their chunks
+        #pragma omp master
+        {
+            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
+            for (const PairScratch& T : scratch_)
+            {
+                nContacts += T.contacts.size();
+                nLists += T.lists.size();
+                nEntries += T.entries.size();
+            }
+            nl.contacts().resize(nContacts);
+            nl.featureLists().resize(nLists);
+            nl.listEntries().resize(nEntries);
+            contactCount_ = static_cast<int>(nContacts);
+        }
+
+        PoolCounts& mine = chunkCounts_[thread];
+        mine = PoolCounts();
+        mine.searched = searched;
+        for (int k = share.begin; k < share.end; ++k)
+        {
+            const ContactPair& p = pairs[k];
+            mine.contacts += p.nContacts;
+            if (p.featureList < 0) continue;
+            ++mine.lists;
+            mine.entries += scratch_[staged_[k][0]].lists[p.featureList].count;
+        }
+        #pragma omp barrier
+
+        if (thread == 0)
+        {
+            searchedPairs_ = 0;
+            for (int t = 0; t < share.nThreads; ++t) searchedPairs_ += chunkCounts_[t].searched;
+        }
+
+        PoolCounts offset;
+        for (int t = 0; t < thread; ++t)
+        {
+            offset.contacts += chunkCounts_[t].contacts;
+            offset.lists += chunkCounts_[t].lists;
+            offset.entries += chunkCounts_[t].entries;
+        }
+
+        // No barrier after this: what follows in the step (body sums) reads
+        // the pairs' forces, not the pools. A pair's header is written only
+        // where it changes (a pair without contacts or list keeps its line
+        // shared with the thread that reads it next)
+        for (int k = share.begin; k < share.end; ++k)
+        {
+            ContactPair& p = pairs[k];
+            if (p.firstContact != offset.contacts) p.firstContact = offset.contacts;
+            if (p.nContacts > 0)
+            {
+                const StoredContact* from =
+                    scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
+                std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
+                offset.contacts += p.nContacts;
+            }
+
+            if (p.featureList < 0) continue;
+            const PairScratch& T = scratch_[staged_[k][0]];
+            const int l = p.featureList;
+            p.featureList = offset.lists++;
+            StoredFeatureList& L = nl.featureLists()[p.featureList];
+            L = T.lists[l];
+            const std::uint32_t* fromEntry = T.entries.data() + L.firstEntry;
+            std::copy(fromEntry, fromEntry + L.count, nl.listEntries().data() + offset.entries);
+            L.firstEntry = offset.entries;
+            offset.entries += L.count;
+        }
+    }
+}
+
+
+void World::sumBodyForces(double dtKick)
+{
+    const int N = static_cast<int>(bodies_.size());
+
+    // Orphaned: called inside a parallel region (or by one thread). Each
+    // thread takes a static chunk of bodies and does all of a body's work,
+    // so the chunk needs no barrier: contact sums in the body's fixed pair
+    // order, body-force models, totals and the second half kick
+    const ThreadShare share(N);
+    const int begin = share.begin;
+    const int end = share.end;
+
+    for (int b = begin; b < end; ++b)
+    {
+        const ContactLoad c = contactLoad(b);
+        bodies_[b].force = c.force;
+        bodies_[b].torque = c.torque;
+    }
+
+    const bool models = !forceModels_.empty();
+    if (models)
+    {
+        for (int b = begin; b < end; ++b)
+        {
+            modelForce_[b].setZero();
+            modelTorque_[b].setZero();
+        }
+        for (const auto& m : forceModels_)
+        {
+            m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+        }
+    }
+
+    for (int b = begin; b < end; ++b)
+    {
+        Body& body = bodies_[b];
+        if (models)
+        {
+            body.force += modelForce_[b];
+            body.torque += modelTorque_[b];
+        }
+        if (body.isFree())
+        {
+            body.force += body.mass*settings_.gravity;
+            // Second half kick of a step (velocity Verlet)
+            if (dtKick > 0) halfKick(body, dtKick);
+        }
+    }
+}
+
+
+void World::bodyForces(double dtKick)
+{
+    const int N = static_cast<int>(bodies_.size());
+
+    // Serial preparation of the body-force models (e.g. flow sampling,
+    // which may use a parallel region of its own and MPI)
+    for (const auto& m : forceModels_)
+    {
+        m->prepare(*this);
+    }
+
+    #pragma omp parallel if(N >= minParallelBodies)
+    {
+        sumBodyForces(dtKick);
+    }
+}
+
+
+void World::computeForces(double dtTangential)
+{
+    resizeBodyFrames();
+    ++evaluation_;
+    preparePairs();
+    const int nPairs = static_cast<int>(nlist_->pairs().size());
+    #pragma omp parallel if(nPairs >= minParallelLoop)
+    {
+        pairForces(dtTangential);
+    }
+    bodyForces(0);
+}
+
+
+ContactLoad World::contactLoad(int b) const
+{
+    ContactLoad c;
+    if (!nlist_) return c;
+    const auto& pairs = nlist_->pairs();
+    for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+    {
+        const ContactPair& p = pairs[nlist_->bodyPair(k)];
+        if (p.i == b)
+        {
+            c.force -= p.forceOnJ;
+            c.torque += p.torqueOnI;
+        }
+        else
+        {
+            c.force += p.forceOnJ;
+            c.torque += p.torqueOnJ;
+        }
+    }
+    return c;
+}
+
+} // namespace iceDEM

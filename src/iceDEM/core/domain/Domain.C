@@ -1,0 +1,194 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "domain/Domain.H"
+#include "World.H"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace iceDEM
+{
+
+namespace
+{
+    const char* axisName(int d) { return d == 0 ? "x" : "y"; }
+}
+
+
+Domain::Domain(const DomainSettings& s)
+:
+    settings_(s)
+{
+    for (int d = 0; d < 2; ++d)
+    {
+        if (!s.periodic[d]) continue;
+        if (!(std::isfinite(s.lo[d]) && std::isfinite(s.hi[d]) && s.hi[d] > s.lo[d]))
+        {
+            std::ostringstream msg;
+            msg << "periodic bounds in " << axisName(d) << " (" << s.lo[d] << " "
+                << s.hi[d] << ") must be finite with min < max";
+            throw Error(msg.str(), "domain");
+        }
+        length_[d] = s.hi[d] - s.lo[d];
+    }
+}
+
+
+int Domain::compose(int a, int b)
+{
+    const int sx = imageX(a) + imageX(b);
+    const int sy = imageY(a) + imageY(b);
+    if (sx < -1 || sx > 1 || sy < -1 || sy > 1) return -1;
+    return imageCode(sx, sy);
+}
+
+
+int Domain::wrap(Vec3& x) const
+{
+    int s[2] = {0, 0};
+    for (int d = 0; d < 2; ++d)
+    {
+        if (!settings_.periodic[d]) continue;
+        // One period at a time: a body moves far less than a period per step
+        if (x[d] < settings_.lo[d])
+        {
+            x[d] += length_[d];
+            s[d] = 1;
+        }
+        else if (x[d] >= settings_.hi[d])
+        {
+            x[d] -= length_[d];
+            s[d] = -1;
+        }
+    }
+    return imageCode(s[0], s[1]);
+}
+
+
+void Domain::ghosts
+(
+    const std::vector<Body>& bodies,
+    const std::vector<int>& which,
+    double reach,
+    std::vector<Ghost>& out
+) const
+{
+    const bool px = settings_.periodic[0];
+    const bool py = settings_.periodic[1];
+    for (int i : which)
+    {
+        const Vec3& x = bodies[i].x;
+        for (int code = 0; code < 9; ++code)
+        {
+            if (code == noImage) continue;
+            const int sx = imageX(code);
+            const int sy = imageY(code);
+            if ((sx != 0 && !px) || (sy != 0 && !py)) continue;
+            const Vec3 y = x + shift(code);
+            bool near = true;
+            for (int d = 0; d < 2 && near; ++d)
+            {
+                if (!settings_.periodic[d]) continue;
+                near = y[d] > settings_.lo[d] - reach && y[d] < settings_.hi[d] + reach;
+            }
+            if (near) out.push_back(Ghost{i, code, y});
+        }
+    }
+}
+
+
+void Domain::check(const World& world, double skin) const
+{
+    if (!active()) return;
+    const std::vector<Body>& bodies = world.bodies();
+
+    // Reach of a pair of the largest free bodies
+    double rMax = 0;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        if (bodies[i].isFree())
+        {
+            rMax = std::max(rMax, world.shapeOf(int(i)).boundingRadius());
+        }
+    }
+    const double reach = 2*rMax + skin;
+
+    // Extent of the bodies that do not move freely (the structure)
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
+    Vec3 hi = -lo;
+    bool structure = false;
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        const Body& b = bodies[i];
+        if (b.isFree()) continue;
+        structure = true;
+        const DilatedShape& S = world.shapeOf(int(i));
+        const Mat3 R = b.rotation();
+        for (const Vec3& v : S.core().vertices())
+        {
+            const Vec3 w = R*v + b.x;
+            lo = lo.cwiseMin(w - Vec3::Constant(S.radius()));
+            hi = hi.cwiseMax(w + Vec3::Constant(S.radius()));
+        }
+    }
+
+    for (int d = 0; d < 2; ++d)
+    {
+        if (!settings_.periodic[d]) continue;
+        const double L = length_[d];
+        if (L < 2*reach)
+        {
+            std::ostringstream msg;
+            msg << "the periodic length in " << axisName(d) << " (" << L
+                << " m) is smaller than twice the reach of a pair of the"
+                << " largest floes, 2 (2 R + skin) = " << 2*reach << " m (R = "
+                << rMax << " m: largest bounding radius; skin " << skin
+                << " m): a floe would meet its own image. Enlarge the domain";
+            throw Error(msg.str(), "domain");
+        }
+        if (!structure) continue;
+        if (lo[d] < settings_.lo[d] || hi[d] > settings_.hi[d])
+        {
+            std::ostringstream msg;
+            msg << "the structure (the bodies that are not free) spans "
+                << axisName(d) << " = " << lo[d] << " .. " << hi[d]
+                << " m and crosses a periodic side of the domain ("
+                << settings_.lo[d] << " " << settings_.hi[d]
+                << "): it must lie inside the periodic bounds";
+            throw Error(msg.str(), "domain");
+        }
+        if (L < hi[d] - lo[d] + 2*reach)
+        {
+            std::ostringstream msg;
+            msg << "the periodic length in " << axisName(d) << " (" << L
+                << " m) is smaller than the structure's extent ("
+                << hi[d] - lo[d] << " m) plus twice the reach of a pair of"
+                << " floes (" << 2*reach << " m): a floe could touch the"
+                << " structure on both sides. Enlarge the domain";
+            throw Error(msg.str(), "domain");
+        }
+    }
+
+    for (const Wall& w : world.walls())
+    {
+        for (int d = 0; d < 2; ++d)
+        {
+            if (settings_.periodic[d] && std::abs(w.normal[d]) > 1e-12)
+            {
+                std::ostringstream msg;
+                msg << "wall " << w.name << " is not parallel to the periodic"
+                    << " direction " << axisName(d) << " (normal "
+                    << w.normal.transpose() << "): walls may only bound"
+                    << " the non-periodic directions";
+                throw Error(msg.str(), "domain");
+            }
+        }
+    }
+}
+
+} // namespace iceDEM

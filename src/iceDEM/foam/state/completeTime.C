@@ -1,0 +1,367 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "completeTime.H"
+
+#include "IFstream.H"
+#include "OFstream.H"
+#include "OSspecific.H"
+#include "Pstream.H"
+#include "IOobject.H"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <thread>
+
+// * * * * * * * * * * * * * * * Static Data  * * * * * * * * * * * * * * * //
+
+const char* const Foam::completeTime::markName = "iceDEMComplete";
+
+
+// * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam;
+
+//- Rename the finished temporary onto the file; remove the other
+//  (compressed or not) variant of the file so that readers cannot pick a
+//  stale one
+bool renameIntoPlace
+(
+    const fileName& target,
+    const fileName& tmp,
+    IOstream::compressionType cmp
+)
+{
+    const bool gz = (cmp == IOstream::COMPRESSED);
+    const fileName src(gz ? fileName(tmp + ".gz") : tmp);
+    const fileName dst(gz ? fileName(target + ".gz") : target);
+    if (std::rename(src.c_str(), dst.c_str()) != 0)
+    {
+        WarningInFunction
+            << "Could not rename " << src << " to " << dst << endl;
+        return false;
+    }
+    const fileName other(gz ? target : fileName(target + ".gz"));
+    std::remove(other.c_str());
+    return true;
+}
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Functions  * * * * * * * * * * * * * * * //
+
+void Foam::completeTime::testWriteDelay()
+{
+    // Test-only hook (tests/cases/iceDEMRestartKill): a pause inside every
+    // write so that a kill lands in one with certainty. Off by default.
+    static const double delay = []
+    {
+        const char* s = std::getenv("ICEDEM_TEST_WRITE_DELAY");
+        const double d = s ? std::atof(s) : 0;
+        if (d > 0)
+        {
+            Info<< "iceDEM: ICEDEM_TEST_WRITE_DELAY = " << d
+                << " s (test only: every write pauses)" << endl;
+        }
+        return d > 0 && std::isfinite(d) ? d : 0.0;
+    }();
+
+    if (delay > 0)
+    {
+        std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+    }
+}
+
+
+bool Foam::completeTime::atomicWrite
+(
+    const regIOobject& io,
+    IOstream::streamFormat fmt,
+    IOstream::versionNumber ver,
+    IOstream::compressionType cmp
+)
+{
+    mkDir(io.path());
+    const fileName target(io.objectPath());
+    const fileName tmp(target + ".writing");
+
+    bool ok = false;
+    {
+        OFstream os(tmp, fmt, ver, cmp);
+        if (!os.good())
+        {
+            WarningInFunction
+                << "Could not open " << tmp << " for writing" << endl;
+            return false;
+        }
+        ok = io.writeHeader(os) && io.writeData(os);
+        IOobject::writeEndDivider(os);
+        ok = ok && os.good();
+    }
+
+    testWriteDelay();
+
+    return ok && renameIntoPlace(target, tmp, cmp);
+}
+
+
+void Foam::completeTime::mark(const Time& runTime)
+{
+    const fileName dir(runTime.timePath()/"uniform");
+    mkDir(dir);
+    const fileName target(dir/markName);
+    const fileName tmp(target + ".writing");
+    {
+        OFstream os(tmp);
+        IOobject io
+        (
+            markName, runTime.timeName(), "uniform", runTime,
+            IOobject::NO_READ, IOobject::NO_WRITE, false
+        );
+        io.writeHeader(os, "dictionary");
+        os  << "// Written last: every file of this time directory is"
+            << " complete (iceDEM restart)" << nl;
+        os.writeEntry("time", runTime.timeName());
+        IOobject::writeEndDivider(os);
+        if (!os.good())
+        {
+            FatalErrorInFunction
+                << "Could not write " << tmp << exit(FatalError);
+        }
+    }
+    renameIntoPlace(target, tmp, IOstream::UNCOMPRESSED);
+}
+
+
+void Foam::completeTime::unmark(const Time& runTime)
+{
+    const fileName target(runTime.timePath()/"uniform"/markName);
+    std::remove(target.c_str());
+}
+
+
+Foam::completeTime::status Foam::completeTime::statusOf
+(
+    const fileName& timeDir
+)
+{
+    if (isFile(timeDir/"uniform"/markName, false))
+    {
+        return status::complete;
+    }
+    if
+    (
+        !isDir(timeDir/"uniform")
+     && (
+            readDir(timeDir, fileName::FILE).size()
+          + readDir(timeDir, fileName::DIRECTORY).size()
+        ) > 0
+    )
+    {
+        return status::initial;
+    }
+    return status::incomplete;
+}
+
+
+Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
+(
+    const argList& args
+)
+{
+    Info<< "Create time\n" << endl;
+
+    const fileName dictPath
+    (
+        args.rootPath()/args.globalCaseName()/"system"/Time::controlDictName
+    );
+
+    // What the controlDict asks for; anything unusual: OpenFOAM's own Time
+    // (and its own messages)
+    dictionary ctrl;
+    {
+        IFstream is(dictPath);
+        if (!is.good())
+        {
+            return autoPtr<Time>::New(Time::controlDictName, args);
+        }
+        ctrl.read(is);
+        ctrl.remove("FoamFile");
+    }
+    const word startFrom(ctrl.getOrDefault<word>("startFrom", "latestTime"));
+    scalar requested = 0;
+    if
+    (
+        !(startFrom == "latestTime")
+     && !(startFrom == "startTime" && ctrl.readIfPresent("startTime", requested))
+    )
+    {
+        return autoPtr<Time>::New(Time::controlDictName, args);
+    }
+
+    // The time directories of this (processor) case and their status
+    wordList names;
+    labelList ok;
+    for (const instant& t : TimePaths::findTimes(args.path(), "constant"))
+    {
+        if (t.name() == "constant")
+        {
+            continue;
+        }
+        names.append(t.name());
+        ok.append(statusOf(args.path()/t.name()) != status::incomplete);
+    }
+
+    // Every rank sees every rank's list
+    List<wordList> allNames(Pstream::nProcs());
+    List<labelList> allOk(Pstream::nProcs());
+    allNames[Pstream::myProcNo()] = names;
+    allOk[Pstream::myProcNo()] = ok;
+    Pstream::gatherList(allNames);
+    Pstream::gatherList(allOk);
+    Pstream::scatterList(allNames);
+    Pstream::scatterList(allOk);
+
+    // Per time name: its value, and the ranks on which it is complete
+    struct info { scalar value; label nOk; label nSeen; };
+    std::map<std::string, info> times;
+    forAll(allNames, proci)
+    {
+        forAll(allNames[proci], k)
+        {
+            const word& n = allNames[proci][k];
+            info& i = times[n];
+            i.value = readScalar(n);
+            i.nSeen += 1;
+            i.nOk += allOk[proci][k];
+        }
+    }
+    const label nProcs = Pstream::nProcs();
+    auto completeOnAll = [&](const info& i) { return i.nOk == nProcs; };
+
+    // The time OpenFOAM would start from
+    const info* wanted = nullptr;
+    word wantedName;
+    for (const auto& t : times)
+    {
+        const bool match =
+            startFrom == "latestTime"
+          ? (!wanted || t.second.value > wanted->value)
+          : mag(t.second.value - requested)
+            <= 1e-12*max(scalar(1), mag(requested));
+        if (match)
+        {
+            wanted = &t.second;
+            wantedName = t.first;
+        }
+    }
+    if (!wanted || completeOnAll(*wanted))
+    {
+        // Nothing to start from (OpenFOAM says so) or a complete time
+        return autoPtr<Time>::New(Time::controlDictName, args);
+    }
+
+    // The last complete time at or before it
+    const info* from = nullptr;
+    word fromName;
+    for (const auto& t : times)
+    {
+        if
+        (
+            completeOnAll(t.second) && t.second.value < wanted->value
+         && (!from || t.second.value > from->value)
+        )
+        {
+            from = &t.second;
+            fromName = t.first;
+        }
+    }
+
+    // The incomplete times skipped (those after the start time)
+    wordList skipped;
+    for (const auto& t : times)
+    {
+        if
+        (
+            (!from || t.second.value > from->value)
+         && t.second.value <= wanted->value
+        )
+        {
+            skipped.append(word(t.first));
+        }
+    }
+    auto where = [&](const word& n)
+    {
+        const info& i = times[n];
+        std::string s;
+        if (nProcs > 1)
+        {
+            s = " (complete on " + Foam::name(i.nOk) + " of "
+              + Foam::name(nProcs) + " processor directories)";
+        }
+        return word(s, false);
+    };
+
+    if (!from)
+    {
+        FatalErrorInFunction
+            << "The start time " << wantedName << " ("
+            << (startFrom == "latestTime" ? "startFrom latestTime" : "startTime")
+            << " in " << dictPath << ") is incomplete" << where(wantedName)
+            << ": it has no uniform/" << markName
+            << " (the run was stopped while writing it) and there is no"
+            << " complete time before it to start from." << nl
+            << "    Incomplete time directories: " << skipped << nl
+            << exit(FatalError);
+    }
+
+    forAll(skipped, k)
+    {
+        Warning
+            << "iceDEM restart: time directory " << skipped[k]
+            << " is incomplete" << where(skipped[k]) << ": no uniform/"
+            << markName << " (the run was stopped while writing it)." << nl
+            << "    It is left in place; the run overwrites its files if it"
+            << " reaches that time." << endl;
+    }
+    Warning
+        << "iceDEM restart: starting from " << fromName
+        << ", the last complete time before " << wantedName << " ("
+        << (startFrom == "latestTime" ? "startFrom latestTime" : "startTime")
+        << " in " << dictPath << ")" << nl << endl;
+
+    // OpenFOAM's Time from the controlDict read above with the start time
+    // replaced (in memory only: the user's file is not touched)
+    ctrl.set("startFrom", word("startTime"));
+    ctrl.set("startTime", from->value);
+
+    const bool functionObjects =
+        argList::validOptions.found("withFunctionObjects")
+      ? args.found("withFunctionObjects")
+      : argList::validOptions.found("noFunctionObjects")
+      ? !args.found("noFunctionObjects")
+      : false;
+
+    return autoPtr<Time>::New
+    (
+        ctrl,
+        args.rootPath(),
+        args.caseName(),
+        "system",
+        "constant",
+        functionObjects,
+        !args.found("no-libs")
+    );
+}
+
+
+// ************************************************************************* //

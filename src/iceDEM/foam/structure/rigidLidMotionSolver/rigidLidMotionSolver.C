@@ -1,0 +1,198 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    This program is free software: you can redistribute it and/or modify it
+    under the terms of the GNU General Public License as published by the
+    Free Software Foundation, either version 3 of the License, or (at your
+    option) any later version. See <http://www.gnu.org/licenses/>.
+
+\*---------------------------------------------------------------------------*/
+
+#include "rigidLidMotionSolver.H"
+#include "dictionaryChecks.H"
+#include "addToRunTimeSelectionTable.H"
+#include "uniformDimensionedFields.H"
+#include "forces.H"
+
+namespace Foam
+{
+    defineTypeNameAndDebug(rigidLidMotionSolver, 0);
+    addToRunTimeSelectionTable(motionSolver, rigidLidMotionSolver, dictionary);
+}
+
+
+Foam::dictionary Foam::rigidLidMotionSolver::stateDict
+(
+    const polyMesh& mesh,
+    const dictionary& coeffs
+)
+{
+    IOobject io
+    (
+        "sixDoFRigidBodyMotionState",
+        mesh.time().timeName(),
+        "uniform",
+        mesh,
+        IOobject::MUST_READ,
+        IOobject::NO_WRITE,
+        false
+    );
+    if (io.typeHeaderOk<IOdictionary>(true))
+    {
+        return IOdictionary(io);
+    }
+    return coeffs;
+}
+
+
+Foam::rigidLidMotionSolver::rigidLidMotionSolver
+(
+    const polyMesh& mesh,
+    const IOdictionary& dict
+)
+:
+    points0MotionSolver(mesh, dict, typeName),
+    motion_(coeffDict(), stateDict(mesh, coeffDict()), mesh.time()),
+    patches_(coeffDict().get<wordRes>("patches")),
+    rhoName_(coeffDict().getOrDefault<word>("rho", "rho")),
+    rhoInf_(1),
+    Q0_(iceDEMChecks::rotationTensor(coeffDict(), "orientation")),
+    curTimeIndex_(-1)
+{
+    // The only mesh motion a rigid lid allows
+    iceDEMChecks::selectName
+    (
+        coeffDict(), "meshMotion", wordList({"planar"}), "planar"
+    );
+    if (rhoName_ == "rhoInf")
+    {
+        rhoInf_ = iceDEMChecks::positive(coeffDict(), "rhoInf");
+    }
+    if (mesh.boundaryMesh().patchSet(patches_).empty())
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << "Entry 'patches' in " << coeffDict().name()
+            << ": no patch of the mesh matches " << patches_ << nl
+            << exit(FatalIOError);
+    }
+    if (!moveAllCells())
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << "Entry 'cellZone' in " << coeffDict().name()
+            << ": rigidLidSixDoFRigidBodyMotion moves the whole mesh"
+            << " rigidly; remove the entry" << nl << exit(FatalIOError);
+    }
+}
+
+
+Foam::scalar Foam::rigidLidMotionSolver::yaw() const
+{
+    const tensor R(motion_.orientation() & Q0_.T());
+    return atan2(R.yx(), R.xx());
+}
+
+
+Foam::tmp<Foam::pointField> Foam::rigidLidMotionSolver::curPoints() const
+{
+    const point c0 = motion_.initialCentreOfMass();
+    const point c = motion_.centreOfMass();
+    const scalar psi = yaw();
+    const scalar cs = cos(psi);
+    const scalar sn = sin(psi);
+
+    const pointField& p0 = points0();
+    tmp<pointField> tp(new pointField(p0.size()));
+    pointField& p = tp.ref();
+    forAll(p0, i)
+    {
+        const scalar dx = p0[i].x() - c0.x();
+        const scalar dy = p0[i].y() - c0.y();
+        p[i] = point(c.x() + cs*dx - sn*dy, c.y() + sn*dx + cs*dy, p0[i].z());
+    }
+    return tp;
+}
+
+
+void Foam::rigidLidMotionSolver::solve()
+{
+    const Time& t = mesh().time();
+
+    bool firstIter = false;
+    if (curTimeIndex_ != t.timeIndex())
+    {
+        motion_.newTime();
+        curTimeIndex_ = t.timeIndex();
+        firstIter = true;
+    }
+
+    vector g(Zero);
+    if (t.foundObject<uniformDimensionedVectorField>("g"))
+    {
+        g = t.lookupObject<uniformDimensionedVectorField>("g").value();
+    }
+
+    // The flow's force and moment about the centre of rotation; only the
+    // horizontal force and the yaw moment act on the structure
+    dictionary forcesDict;
+    forcesDict.add("type", functionObjects::forces::typeName);
+    forcesDict.add("patches", patches_);
+    forcesDict.add("rhoInf", rhoInf_);
+    forcesDict.add("rho", rhoName_);
+    forcesDict.add("CofR", motion_.centreOfRotation());
+    functionObjects::forces f("forces", t, forcesDict);
+    f.calcForcesMoment();
+
+    const vector F = f.forceEff();
+    const vector Mom = f.momentEff();
+    const scalar m = motion_.mass();
+
+    motion_.update
+    (
+        firstIter,
+        vector(F.x(), F.y(), 0) + m*g,
+        vector(0, 0, Mom.z()) + m*(motion_.momentArm() ^ g),
+        t.deltaTValue(),
+        t.deltaT0Value()
+    );
+}
+
+
+bool Foam::rigidLidMotionSolver::writeObject
+(
+    IOstream::streamFormat fmt,
+    IOstream::versionNumber ver,
+    IOstream::compressionType cmp,
+    const bool valid
+) const
+{
+    IOdictionary dict
+    (
+        IOobject
+        (
+            "sixDoFRigidBodyMotionState",
+            mesh().time().timeName(),
+            "uniform",
+            mesh(),
+            IOobject::NO_READ,
+            IOobject::NO_WRITE,
+            false
+        )
+    );
+    motion_.state().write(dict);
+    return dict.regIOobject::write();
+}
+
+
+bool Foam::rigidLidMotionSolver::read()
+{
+    if (points0MotionSolver::read())
+    {
+        motion_.read(coeffDict());
+        return true;
+    }
+    return false;
+}
+
+
+// ************************************************************************* //

@@ -1,0 +1,729 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM tests: periodic boundaries (core/domain): a floe crossing a side,
+    a collision across a side against the same collision inside, momentum
+    of a periodic field, 1 thread = 2 threads, restart = uninterrupted, and
+    the domain's checks.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "testWorlds.H"
+#include "contact/NeighbourList.H"
+#include "field/VoronoiField.H"
+#include "domain/InflowOutflow.H"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <iostream>
+
+using namespace iceDEM;
+using namespace iceDEM::test;
+
+namespace
+{
+
+//- A floe outline: an irregular hexagon of about 1.2 m radius
+std::vector<Vec2> outline(double phase = 0.3)
+{
+    std::vector<Vec2> poly;
+    for (int j = 0; j < 6; ++j)
+    {
+        const double a = phase + 2*M_PI*j/6;
+        const double rad = 1.0 + 0.2*((j*7) % 3)/2.0;
+        poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
+    }
+    return poly;
+}
+
+WorldSettings noGravity()
+{
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    s.gravity = Vec3::Zero();
+    return s;
+}
+
+DomainSettings periodicBox(double x0, double x1, double y0, double y1, bool px = true, bool py = true)
+{
+    DomainSettings d;
+    d.periodic[0] = px;
+    d.periodic[1] = py;
+    d.lo[0] = x0; d.hi[0] = x1;
+    d.lo[1] = y0; d.hi[1] = y1;
+    return d;
+}
+
+//- n floes in a fully periodic box, random velocities and spins, no walls
+std::unique_ptr<World> makePeriodicField(int n, unsigned seed)
+{
+    auto w = std::make_unique<World>(noGravity());
+    const int mat = w->addMaterial(ice(1e9));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    std::mt19937_64 rng(seed);
+    auto uni = [&](double a, double b)
+    {
+        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
+    };
+    const int side = int(std::ceil(std::sqrt(double(n))));
+    const double pitch = 3.0;
+    for (int k = 0; k < n; ++k)
+    {
+        std::vector<Vec2> poly;
+        const int m = 5 + int(rng() % 3);
+        const double phase = uni(0, 2*M_PI);
+        for (int j = 0; j < m; ++j)
+        {
+            const double a = phase + 2*M_PI*j/m;
+            const double rad = uni(1.0, 1.3);
+            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
+        }
+        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1));
+        const Vec3 x((k % side)*pitch, (k/side)*pitch, 0);
+        w->addBody(shape, mat, x, Quat::Identity(), Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5)));
+    }
+    const double L = side*pitch;
+    w->setDomain(periodicBox(-0.5*pitch, L - 0.5*pitch, -0.5*pitch, L - 0.5*pitch));
+    return w;
+}
+
+void expectSameState(const World& a, const World& b)
+{
+    ASSERT_EQ(a.bodies().size(), b.bodies().size());
+    for (std::size_t i = 0; i < a.bodies().size(); ++i)
+    {
+        const Body& p = a.bodies()[i];
+        const Body& q = b.bodies()[i];
+        EXPECT_EQ(p.x, q.x) << "body " << i;
+        EXPECT_EQ(p.v, q.v) << "body " << i;
+        EXPECT_EQ(p.L, q.L) << "body " << i;
+        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
+    }
+}
+
+//- Contact pairs through a periodic image with contacts now
+int crossingContacts(const World& w)
+{
+    int n = 0;
+    for (const ContactPair& p : w.neighbourList().pairs())
+    {
+        n += p.nContacts > 0 && p.image != Domain::noImage;
+    }
+    return n;
+}
+
+Vec3 totalMomentum(const World& w, double& scale)
+{
+    Vec3 P = Vec3::Zero();
+    scale = 0;
+    for (const Body& b : w.bodies())
+    {
+        P += b.mass*b.v;
+        scale += b.mass*b.v.norm();
+    }
+    return P;
+}
+
+} // anonymous namespace
+
+
+TEST(periodic, floeCrossingASideKeepsMomentumAndOrientation)
+{
+    // The same tumbling floe with and without periodic sides: velocity,
+    // angular momentum and orientation do not depend on the position, so
+    // they must be bit for bit the same after the floe has wrapped in x
+    // and in y; the position differs by whole periods
+    auto make = [](bool periodic)
+    {
+        auto w = std::make_unique<World>(noGravity());
+        const int mat = w->addMaterial(ice());
+        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(), -0.4, 0.8), 0.1));
+        w->addBody(shape, mat, Vec3(18, 17, 0), Quat(Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized())),
+                   Vec3(3, 2.5, 0.1), Vec3(0.3, -0.2, 1.1));
+        if (periodic) w->setDomain(periodicBox(0, 20, 0, 20));
+        return w;
+    };
+    auto a = make(true);
+    auto b = make(false);
+    a->advanceTo(2.0);
+    b->advanceTo(2.0);
+    const Body& p = a->bodies()[0];
+    const Body& q = b->bodies()[0];
+    EXPECT_EQ(p.v, q.v);
+    EXPECT_EQ(p.L, q.L);
+    EXPECT_EQ(p.q.coeffs(), q.q.coeffs());
+    // Wrapped once in x and once in y (18 + 6 = 24, 17 + 5 = 22); the
+    // positions are summed at different magnitudes (x += dt v, 2000 steps,
+    // half an ulp of 32 m each: 7e-12 m at most)
+    const double roundOff = 2000*0.5*std::numeric_limits<double>::epsilon()*32;
+    EXPECT_NEAR(p.x.x(), q.x.x() - 20, roundOff);
+    EXPECT_NEAR(p.x.y(), q.x.y() - 20, roundOff);
+    EXPECT_EQ(p.x.z(), q.x.z());
+    EXPECT_GE(p.x.x(), 0);
+    EXPECT_LT(p.x.x(), 20);
+}
+
+
+namespace
+{
+
+//- Two floes, A at xA and B at xA + r (B turned by qB), both moving, in a
+//  domain periodic in x over [0, 16) (or not), after one step from that
+//  configuration (started as a restart, so touching at start is allowed):
+//  the force and torque on A and on B
+struct PairLoads
+{
+    Vec3 F[2], T[2];
+    int contacts = 0;
+    int crossing = 0;
+};
+
+PairLoads pairLoads(const Vec3& xA, const Vec3& r, const Quat& qB, bool periodic)
+{
+    World w(noGravity());
+    const int mat = w.addMaterial(ice(1e9));
+    w.setPairProperties(mat, mat, PairProperties{0.3, 0.5});
+    const int sA = w.addShape(DilatedShape(ConvexPolyhedron::prism(outline(0.3), -0.4, 0.8), 0.1));
+    const int sB = w.addShape(DilatedShape(ConvexPolyhedron::prism(outline(1.1), -0.4, 0.8), 0.1));
+    Vec3 xB = xA + r;
+    if (periodic && xB.x() < 0) xB.x() += 16;
+    w.addBody(sA, mat, xA, Quat::Identity(), Vec3(-0.2, 0.05, 0), Vec3(0.01, 0, 0.3));
+    w.addBody(sB, mat, xB, qB, Vec3(0.2, -0.1, 0), Vec3(0, -0.02, -0.2));
+    if (periodic) w.setDomain(periodicBox(0, 16, 0, 16, true, false));
+    w.initialise(true);
+    w.step();
+    PairLoads out;
+    for (int b = 0; b < 2; ++b)
+    {
+        out.F[b] = w.bodies()[b].force;
+        out.T[b] = w.bodies()[b].torque;
+    }
+    out.contacts = w.contactCount();
+    out.crossing = crossingContacts(w);
+    return out;
+}
+
+} // anonymous namespace
+
+
+TEST(periodic, collisionAcrossASideEqualsTheSameCollisionInside)
+{
+    // The same touching configuration of two floes (B to the left of A)
+    // across the side x = 0 (A at x = 0.9, B near x = 16, met through its
+    // image) and inside the domain (A at 8.9, B near 7): the contact forces
+    // and torques agree to 1e-12 of the force. Several orientations of B,
+    // each 2 cm deeper than first touch, with relative motion (damping and
+    // tangential springs). What remains is the rounding of the positions
+    // at different magnitudes: 1.5 eps |x|/overlap of the Hertz force
+    // (2.4e-13 for 16 m and 2 cm)
+    const Vec3 across(0.9, 8, 0);
+    const Vec3 inside(8.9, 8, 0);
+    int checked = 0;
+    for (const double turn : {0.0, 0.35, 0.8, 1.9})
+    {
+        const Quat qB(Eigen::AngleAxisd(turn, Vec3(0.05, 0.02, 1).normalized()));
+        // First touch, from apart, in 1 mm steps
+        double d = 3.2;
+        const Vec3 dir = Vec3(-1, 0.15, 0).normalized();
+        while (d > 1.0 && pairLoads(inside, d*dir, qB, false).contacts == 0) d -= 1e-3;
+        ASSERT_GT(d, 1.0);
+        d -= 0.02;
+
+        const PairLoads P = pairLoads(across, d*dir, qB, true);
+        const PairLoads Q = pairLoads(inside, d*dir, qB, true);
+        ASSERT_GT(P.crossing, 0) << "turn " << turn;
+        ASSERT_EQ(Q.crossing, 0);
+        ASSERT_EQ(P.contacts, Q.contacts);
+        const double scale = Q.F[0].norm();
+        EXPECT_GT(scale, 1e4);
+        for (int b = 0; b < 2; ++b)
+        {
+            EXPECT_LE((P.F[b] - Q.F[b]).norm(), 1e-12*scale) << "turn " << turn << " body " << b;
+            // torques about the centroids, lever arms about 1.2 m
+            EXPECT_LE((P.T[b] - Q.T[b]).norm(), 1e-12*1.2*scale) << "turn " << turn << " body " << b;
+        }
+        // Action and reaction through the side
+        EXPECT_LE((P.F[0] + P.F[1]).norm(), 1e-12*scale);
+        ++checked;
+    }
+    EXPECT_EQ(checked, 4);
+}
+
+
+TEST(periodic, collisionAcrossASideFollowsTheSameCollisionInside)
+{
+    // The whole impact (2 s, oblique, spinning, with friction) across the
+    // side and inside: the rebound velocities and spins agree to the
+    // rounding of the trajectories (positions summed at different
+    // magnitudes, eps 40 m per step, through a contact stiffness of about
+    // 1e8 N/m over some 300 steps of contact)
+    auto make = [](double xA, double xB)
+    {
+        auto w = std::make_unique<World>(noGravity());
+        const int mat = w->addMaterial(ice(1e9));
+        w->setPairProperties(mat, mat, PairProperties{0.3, 0.5});
+        const int sA = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(0.3), -0.4, 0.8), 0.1));
+        const int sB = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(1.1), -0.4, 0.8), 0.1));
+        w->addBody(sA, mat, Vec3(xA, 10.3, 0), Quat::Identity(), Vec3(-1.0, 0.2, 0), Vec3(0, 0, 0.4));
+        w->addBody(sB, mat, Vec3(xB, 9.7, 0), Quat::Identity(), Vec3(1.0, -0.1, 0), Vec3(0, 0, -0.3));
+        w->setDomain(periodicBox(0, 40, 0, 20, true, false));
+        return w;
+    };
+    auto across = make(1.5, 38.5);
+    auto inside = make(21.5, 18.5);
+    int crossing = 0;
+    double Lscale = 0;
+    for (int k = 0; k < 2000; ++k)
+    {
+        across->step();
+        inside->step();
+        crossing = std::max(crossing, crossingContacts(*across));
+        EXPECT_EQ(crossingContacts(*inside), 0);
+        Lscale = std::max(Lscale, inside->bodies()[0].L.norm());
+    }
+    EXPECT_GT(crossing, 0);
+    for (int b = 0; b < 2; ++b)
+    {
+        const Body& p = across->bodies()[b];
+        const Body& q = inside->bodies()[b];
+        // The impact changed the motion: a rebound
+        EXPECT_GT(std::abs(q.v.x() - (b == 0 ? -1.0 : 1.0)), 0.5);
+        EXPECT_LE((p.v - q.v).norm(), 1e-10*q.v.norm());
+        EXPECT_LE((p.L - q.L).norm(), 1e-10*Lscale);
+    }
+}
+
+
+TEST(periodic, momentumOfAPeriodicFieldIsConserved)
+{
+    // No walls, no gravity, no water: only contact forces, equal and
+    // opposite also through the sides, so the total momentum stays
+    auto w = makePeriodicField(200, 3);
+    double scale0;
+    const Vec3 P0 = totalMomentum(*w, scale0);
+    int crossing = 0;
+    while (w->time() < 3.0)
+    {
+        w->step();
+        crossing = std::max(crossing, crossingContacts(*w));
+    }
+    double scale;
+    const Vec3 P = totalMomentum(*w, scale);
+    EXPECT_GT(crossing, 0);
+    EXPECT_GT(w->neighbourListBuilds(), 5);
+    EXPECT_LT((P - P0).norm(), 1e-12*scale0) << (P - P0).transpose();
+    // The floes stay in the periodic bounds
+    const DomainSettings& d = w->domain()->settings();
+    for (const Body& b : w->bodies())
+    {
+        for (int k = 0; k < 2; ++k)
+        {
+            EXPECT_GE(b.x[k], d.lo[k]);
+            EXPECT_LT(b.x[k], d.hi[k]);
+        }
+    }
+}
+
+
+TEST(periodic, resultsDoNotDependOnTheNumberOfThreads)
+{
+    // From 1000 bodies up the step runs in parallel
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    auto a = makePeriodicField(1200, 5);
+    int crossing = 0;
+    while (a->time() < 0.6)
+    {
+        a->step();
+        crossing = std::max(crossing, crossingContacts(*a));
+    }
+    omp_set_num_threads(std::max(2, threads));
+    auto b = makePeriodicField(1200, 5);
+    b->advanceTo(a->time());
+    omp_set_num_threads(threads);
+    EXPECT_GT(crossing, 0);
+    expectSameState(*a, *b);
+}
+
+
+TEST(periodic, restartEqualsUninterruptedRun)
+{
+    auto a = makePeriodicField(100, 11);
+    a->advanceTo(2.0);
+
+    // Cut at the first step after 0.5 s with a contact across a side
+    auto b = makePeriodicField(100, 11);
+    b->advanceTo(0.5);
+    while (crossingContacts(*b) == 0 && b->time() < 1.5)
+    {
+        b->step();
+    }
+    EXPECT_GT(crossingContacts(*b), 0);
+    auto c = makePeriodicField(100, 11);
+    for (std::size_t i = 0; i < b->bodies().size(); ++i)
+    {
+        Body& t = c->bodies()[i];
+        const Body& f = b->bodies()[i];
+        t.x = f.x; t.q = f.q; t.v = f.v; t.L = f.L;
+        t.force = f.force; t.torque = f.torque;
+    }
+    c->setContactRecords(b->contactRecords());
+    c->setTime(b->time());
+    c->initialise(true);
+    c->advanceTo(2.0);
+    expectSameState(*a, *c);
+}
+
+
+TEST(periodic, badSizesStructureAndWallsAreErrors)
+{
+    auto floeWorld = [](const DomainSettings& d)
+    {
+        auto w = std::make_unique<World>(noGravity());
+        const int mat = w->addMaterial(ice());
+        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(), -0.4, 0.8), 0.1));
+        w->addBody(shape, mat, Vec3(2, 2, 0));
+        w->setDomain(d);
+        return w;
+    };
+    auto entryOf = [](World& w)
+    {
+        try { w.initialise(); }
+        catch (const Error& e) { return e.entry(); }
+        return std::string("no error");
+    };
+    // Bounding radius about 1.4 m: a length of 4 m is below 2 (2 R + skin)
+    {
+        auto w = floeWorld(periodicBox(0, 4, 0, 40));
+        EXPECT_EQ(entryOf(*w), "domain");
+    }
+    {
+        auto w = floeWorld(periodicBox(0, 40, 0, 40));
+        EXPECT_EQ(entryOf(*w), "no error");
+    }
+    // Reversed bounds
+    EXPECT_THROW(Domain(periodicBox(5, 1, 0, 40)), Error);
+    // A fixed structure crossing the side x = 40, and one too wide: 36.1 m
+    // + 2 (2 R + skin) = 42 m > 40 m
+    for (double xs : {39.0, 20.0})
+    {
+        auto w = floeWorld(periodicBox(0, 40, 0, 40));
+        const int steel = w->addMaterial(test::steel());
+        const double half = xs == 39.0 ? 2.0 : 18.0;
+        const int box = w->addShape(DilatedShape(ConvexPolyhedron::box(Vec3(half, 2, 2)), 0.05));
+        w->addBody(box, steel, Vec3(xs, 20, 0), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+        EXPECT_EQ(entryOf(*w), "domain") << "structure at x = " << xs;
+    }
+    // A wall across a periodic direction
+    {
+        auto w = floeWorld(periodicBox(0, 40, 0, 40, true, false));
+        Wall wall;
+        wall.name = "end";
+        wall.point = Vec3(0, 0, 0);
+        wall.normal = Vec3(1, 0, 0);
+        w->addWall(wall);
+        EXPECT_EQ(entryOf(*w), "domain");
+    }
+}
+
+
+TEST(periodic, voronoiFieldFillsThePeriodicDomain)
+{
+    // createIceField's region equal to the periodic bounds: the floes of
+    // the cells cut by the region's sides end straight at the sides, so no
+    // floe straddles a side, and the gaps across a side are the spreading
+    // gaps of the tessellation: the DEM starts (no overlap or contact,
+    // also through the sides) and pairs across the sides exist
+    VoronoiFieldSettings s;
+    s.xmin = 0; s.xmax = 300; s.ymin = 0; s.ymax = 200;
+    s.concentration = 0.9;
+    s.meanFloeArea = 100;
+    s.radius = 0.1;
+    s.thickness.value = 1.0;
+    s.seed = 4;
+    VoronoiFieldReport rep;
+    const std::vector<Floe> floes = generateVoronoiField(s, rep);
+    EXPECT_NEAR(rep.concentration, 0.9, 1e-3);
+
+    World w(noGravity());
+    const int mat = w.addMaterial(ice());
+    double xLo = 1e9, xHi = -1e9;
+    for (const Floe& f : floes)
+    {
+        const int shape = w.addShape(DilatedShape(f.core(), f.radius));
+        w.addBody(shape, mat, Vec3::Zero());
+        for (const Vec2& p : f.outline)
+        {
+            xLo = std::min(xLo, p.x());
+            xHi = std::max(xHi, p.x());
+        }
+    }
+    w.setDomain(periodicBox(0, 300, 0, 200));
+    EXPECT_NO_THROW(w.initialise());
+    int acrossPairs = 0;
+    for (const ContactPair& p : w.neighbourList().pairs())
+    {
+        acrossPairs += p.image != Domain::noImage;
+    }
+    EXPECT_GT(acrossPairs, 20);
+    // The field reaches the sides (within a floe's size)
+    EXPECT_LT(xLo, 10);
+    EXPECT_GT(xHi, 290);
+    EXPECT_GE(xLo, 0);
+    EXPECT_LE(xHi, 300);
+}
+
+
+namespace
+{
+
+//- A cluster of colliding floes (no walls, no domain) and, optionally, an
+//  idle floe far away (last index)
+std::unique_ptr<World> clusterWithFarFloe(bool far)
+{
+    auto w = makePeriodicField(100, 9);
+    // the same floes without periodic sides: rebuild from its bodies
+    auto v = std::make_unique<World>(noGravity());
+    const int mat = v->addMaterial(ice(1e9));
+    v->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    for (const DilatedShape& s : w->shapes()) v->addShape(s);
+    for (const Body& b : w->bodies())
+    {
+        const int i = v->addBody(b.shape, mat, Vec3::Zero());
+        Body& t = v->bodies()[i];
+        t.x = b.x; t.q = b.q; t.v = b.v; t.L = b.L;
+    }
+    if (far)
+    {
+        v->addBody(0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0));
+    }
+    return v;
+}
+
+} // anonymous namespace
+
+
+TEST(bodiesInRun, removingAnIdleBodyLeavesTheOthersExact)
+{
+    // The far floe never touches the cluster: removing it during the run
+    // must leave every other floe's trajectory bit for bit that of a run
+    // without it (indices keep their order, so do the force sums)
+    auto a = clusterWithFarFloe(false);
+    auto b = clusterWithFarFloe(true);
+    a->advanceTo(1.0);
+    b->advanceTo(0.5);
+    EXPECT_GT(b->contactCount(), 0);
+    std::vector<bool> remove(b->bodies().size(), false);
+    remove.back() = true;
+    b->removeBodiesInRun(remove);
+    EXPECT_EQ(b->bodies().size(), a->bodies().size());
+    b->advanceTo(1.0);
+    expectSameState(*a, *b);
+}
+
+
+TEST(bodiesInRun, insertingAnIdleBodyLeavesTheOthersExact)
+{
+    auto a = clusterWithFarFloe(false);
+    auto b = clusterWithFarFloe(false);
+    a->advanceTo(1.0);
+    b->advanceTo(0.5);
+    const int n = static_cast<int>(b->bodies().size());
+    const int i = b->insertBodyInRun(0, 0, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0));
+    EXPECT_EQ(i, n);
+    const double x0 = b->bodies()[n].x.x();
+    b->advanceTo(1.0);
+    ASSERT_EQ(int(b->bodies().size()), n + 1);
+    std::vector<bool> remove(n + 1, false);
+    remove.back() = true;
+    // the inserted floe drifted freely: 0.1 m/s for 0.5 s
+    // (500 steps of x += dt v at 500 m: half an ulp of 512 m each)
+    EXPECT_NEAR(b->bodies()[n].x.x() - x0, 0.05, 500*0.5*std::numeric_limits<double>::epsilon()*512);
+    b->removeBodiesInRun(remove);
+    expectSameState(*a, *b);
+}
+
+
+TEST(bodiesInRun, removingATouchingBodyKeepsTheOtherHistories)
+{
+    auto w = clusterWithFarFloe(false);
+    w->advanceTo(0.3);
+    while (w->contactPairCount() < 3) w->step();
+    const std::vector<ContactRecord> before = w->contactRecords();
+    const int gone = before.front().i;
+    std::vector<bool> remove(w->bodies().size(), false);
+    remove[gone] = true;
+    const Vec3 P0 = [&]{ Vec3 P = Vec3::Zero(); for (const Body& b : w->bodies()) P += b.mass*b.v; return P; }();
+    const Vec3 Pgone = w->bodies()[gone].mass*w->bodies()[gone].v;
+    w->removeBodiesInRun(remove);
+    // Every other contact kept, with its spring, under the new indices
+    std::vector<ContactRecord> expected;
+    for (ContactRecord r : before)
+    {
+        if (r.i == gone || r.j == gone) continue;
+        if (r.i > gone) --r.i;
+        if (r.j > gone) --r.j;
+        expected.push_back(r);
+    }
+    const std::vector<ContactRecord> after = w->contactRecords();
+    ASSERT_EQ(after.size(), expected.size());
+    for (std::size_t k = 0; k < after.size(); ++k)
+    {
+        EXPECT_EQ(after[k].i, expected[k].i);
+        EXPECT_EQ(after[k].j, expected[k].j);
+        EXPECT_EQ(after[k].featureI, expected[k].featureI);
+        EXPECT_EQ(after[k].featureJ, expected[k].featureJ);
+        EXPECT_EQ(after[k].xi, expected[k].xi);
+    }
+    // The rest runs on, and its momentum is that of the kept floes
+    const Vec3 P1 = [&]{ Vec3 P = Vec3::Zero(); for (const Body& b : w->bodies()) P += b.mass*b.v; return P; }();
+    EXPECT_LT((P1 - (P0 - Pgone)).norm(), 1e-12*P0.norm() + 1e-9);
+    w->advanceTo(0.6);
+    w->checkFinite();
+}
+
+
+TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
+{
+    auto w = clusterWithFarFloe(false);
+    w->advanceTo(0.1);
+    const Vec3 x = w->bodies()[5].x;
+    w->insertBodyInRun(0, 0, x + Vec3(0, 0, 2.0));     // above it: free
+    EXPECT_NO_THROW(w->step());
+    w->insertBodyInRun(0, 0, x + Vec3(0.1, 0, 0));     // on it
+    try
+    {
+        w->step();
+        ADD_FAILURE() << "no error";
+    }
+    catch (const Error& e)
+    {
+        EXPECT_EQ(e.entry(), "bodies");
+    }
+}
+
+
+namespace
+{
+
+//- Free drift at 1 m/s along +x through [0, 100] x [0, 50] m with inflow
+//  strips of 20 m at concentration c
+std::unique_ptr<World> driftWithInflow(double c, std::shared_ptr<InflowOutflow>& io)
+{
+    WorldSettings ws = noGravity();
+    ws.timeStep = 5e-3;
+    auto w = std::make_unique<World>(ws);
+    const int mat = w->addMaterial(ice(1e9));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+
+    InflowOutflowSettings s;
+    s.axis = 0;
+    s.sign = 1;
+    s.upstream = 0;
+    s.downstream = 100;
+    s.stripWidth = 20;
+    s.interval = 0.5;
+    s.material = mat;
+    s.field.xmin = 0; s.field.xmax = 100; s.field.ymin = 0; s.field.ymax = 50;
+    s.field.concentration = c;
+    s.field.meanFloeArea = 25;
+    s.field.radius = 0.1;
+    s.field.thickness.value = 0.5;
+    s.field.velocity = Vec3(1, 0, 0);
+    s.field.seed = 3;
+
+    VoronoiFieldReport rep;
+    for (const Floe& f : generateVoronoiField(s.field, rep))
+    {
+        const int shape = w->addShape(DilatedShape(f.core(), f.radius));
+        w->addBody(shape, mat, Vec3::Zero(), Quat::Identity(), f.velocity);
+    }
+    s.field.seed = 1000;    // the strips' floes: new shapes
+    io = std::make_shared<InflowOutflow>(s);
+    w->setInflowOutflow(io);
+    return w;
+}
+
+//- Floe area (outline of the dilated floe: core area + perimeter r + pi r^2
+//  is not needed: the generator's outline area is the floe's) with the
+//  centroid in [s0, s1) x [0, 50], over the window's area
+double windowConcentration(const World& w, double s0, double s1)
+{
+    double area = 0;
+    for (std::size_t i = 0; i < w.bodies().size(); ++i)
+    {
+        const Body& b = w.bodies()[i];
+        if (b.x.x() < s0 || b.x.x() >= s1) continue;
+        const DilatedShape& S = w.shapeOf(int(i));
+        // prism floe: volume of the faceted outer polyhedron / thickness
+        area += S.facetedVolume()/0.5;
+    }
+    return area/((s1 - s0)*50);
+}
+
+} // anonymous namespace
+
+
+TEST(inflowOutflow, upstreamConcentrationStaysAtTheTargetAndCountsBalance)
+{
+    const double c = 0.7;
+    std::shared_ptr<InflowOutflow> io;
+    auto w = driftWithInflow(c, io);
+    const long initial = static_cast<long>(w->bodies().size());
+    double sum = 0;
+    int samples = 0, maxContacts = 0;
+    while (w->time() < 150)
+    {
+        w->advanceTo(w->time() + 1.0);
+        maxContacts = std::max(maxContacts, w->contactCount());
+        // in + initial - out = floes in the domain, at every sample
+        ASSERT_EQ(io->floesIn() + initial - io->floesOut(), long(w->bodies().size()));
+        if (w->time() > 20)
+        {
+            // upstream window, downstream of the insertion strip
+            sum += windowConcentration(*w, 20, 60);
+            ++samples;
+        }
+    }
+    const double mean = sum/samples;
+    std::cout << "inflow/outflow: mean upstream concentration " << mean << " (target " << c
+              << "), " << io->strips() << " strips, " << io->floesIn() << " floes in, "
+              << io->floesOut() << " out, " << w->bodies().size() << " in the domain\n";
+    // 150 s at 1 m/s: the field passed 1.5 times, 6 or 7 strips
+    EXPECT_GE(io->strips(), 6);
+    EXPECT_GT(io->floesOut(), initial);
+    EXPECT_EQ(maxContacts, 0);          // inserted without touching
+    EXPECT_NEAR(mean, c, 0.02*c) << "mean upstream concentration " << mean;
+    // Nothing left beyond the bounds for longer than an interval
+    for (const Body& b : w->bodies())
+    {
+        EXPECT_LT(b.x.x(), 100 + 0.5*1.0 + 1e-9);
+    }
+}
+
+
+TEST(inflowOutflow, sameSeedSameRunAndBadConcentration)
+{
+    std::shared_ptr<InflowOutflow> ia, ib;
+    auto a = driftWithInflow(0.6, ia);
+    auto b = driftWithInflow(0.6, ib);
+    a->advanceTo(45);
+    b->advanceTo(45);
+    EXPECT_EQ(ia->floesIn(), ib->floesIn());
+    EXPECT_GT(ia->floesIn(), 0);
+    expectSameState(*a, *b);
+
+    InflowOutflowSettings s;
+    for (const double c : {0.0, -0.1, 1.2})
+    {
+        s.field.concentration = c;
+        try
+        {
+            InflowOutflow bad(s);
+            ADD_FAILURE() << "concentration " << c << " accepted";
+        }
+        catch (const Error& e)
+        {
+            EXPECT_EQ(e.entry(), "concentration");
+        }
+    }
+}
