@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace iceDEM
 {
@@ -140,6 +141,12 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         return;
     }
 
+    // Two-way coupling: the drag per face for the flow (this thread's
+    // buffers grow to the largest floe once, then allocate nothing)
+    const bool collect = flow_->collectsFaceForces();
+    static thread_local std::vector<Vec3> faceF;
+    static thread_local std::vector<double> faceK;
+
     // Nothing below the water plane: no drag
     {
         const Vec3 up = R.row(2).transpose();
@@ -154,7 +161,26 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         }
         if (!wet)
         {
+            if (collect)
+            {
+                flow_->faceForces(i, 0, nullptr, nullptr);
+            }
             return;
+        }
+    }
+
+    const int nf = static_cast<int>(P.faces().size());
+    if (collect)
+    {
+        if (int(faceF.size()) < nf)
+        {
+            faceF.resize(nf);
+            faceK.resize(nf);
+        }
+        for (int f = 0; f < nf; ++f)
+        {
+            faceF[f].setZero();
+            faceK[f] = 0;
         }
     }
 
@@ -166,7 +192,6 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     double areas[capacity];
     Vec3 u[capacity];
 
-    const int nf = static_cast<int>(P.faces().size());
     for (int f = 0; f < nf; ++f)
     {
         if (!submergedFace(P, f, R, b.x, water_.level, face))
@@ -196,14 +221,17 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
                 const double un = ur.dot(n);
 
                 Vec3 dF;
+                double k;   // dF = -k u_r (skin), -k u_n n (form)
                 if (skin)
                 {
                     const Vec3 ut = ur - un*n;
-                    dF = (-coeff*areas[j]*ut.norm())*ut;
+                    k = coeff*areas[j]*ut.norm();
+                    dF = -k*ut;
                 }
                 else if (un > 0)
                 {
-                    dF = (-coeff*areas[j]*un*un)*n;
+                    k = coeff*areas[j]*un;
+                    dF = (-k*un)*n;
                 }
                 else
                 {
@@ -211,8 +239,18 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
                 }
                 F += dF;
                 M += r.cross(dF);
+                if (collect)
+                {
+                    faceF[f] += dF;
+                    faceK[f] += k;
+                }
             }
         }
+    }
+
+    if (collect)
+    {
+        flow_->faceForces(i, nf, faceF.data(), faceK.data());
     }
 }
 

@@ -235,6 +235,29 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
         // not used: switching the type is the only change between the two
         const vector current = dd.getOrDefault<vector>("current", Zero);
         flow = std::make_shared<::iceDEM::UniformCurrent>(toVec3(current));
+
+        // A uniform current has no flow to return the drag to
+        if (dd.found("twoWay", keyType::LITERAL))
+        {
+            ITstream& is = dd.lookup("twoWay", keyType::LITERAL);
+            const token t(is);
+            const bool isFalse =
+                is.nRemainingTokens() == 0
+             && (
+                    (t.isBool() && !t.boolToken())
+                 || (t.isWord() && Switch(t.wordToken(), true).valid()
+                  && !Switch(t.wordToken(), true))
+                );
+            if (!isFalse)
+            {
+                FatalIOErrorInFunction(dd)
+                    << "Entry 'twoWay': two-way coupling returns the drag to"
+                    << " the resolved flow; it needs drag type resolved"
+                    << " (iceFloatingFoam), not empirical (a uniform"
+                    << " current). Allowed here: twoWay false, or no entry"
+                    << nl << exit(FatalIOError);
+            }
+        }
     }
     else
     {

@@ -5,6 +5,8 @@
 
 #include "iceDEMCoupling.H"
 #include "resolvedFlowVelocity.H"
+#include "iceDragReaction.H"
+#include "fvMatrices.H"
 #include "floatingStructure.H"
 #include "dictionaryChecks.H"
 
@@ -623,11 +625,35 @@ Foam::iceDEMCoupling::iceDEMCoupling
     }
     case_->start();
 
+    if (flow_ && flow_->twoWay())
+    {
+        reaction_.reset
+        (
+            new iceDragReaction
+            (
+                *mesh_,
+                *flow_,
+                props.subDict("water").get<scalar>("density")
+            )
+        );
+    }
+
     if (case_->restarted())
     {
         const dictionary& cs = case_->couplingState();
         pendingForce_ = cs.getOrDefault<vector>("iceLoadForce", Zero);
         pendingMoment_ = cs.getOrDefault<vector>("iceLoadMoment", Zero);
+        if (reaction_ && cs.found("dragFaces"))
+        {
+            // The face drag of the last evaluation before the write (the
+            // restart's first evaluation samples a later flow field)
+            flow_->setFaceDrag
+            (
+                cs.get<labelList>("dragFaces"),
+                cs.get<List<vector>>("dragFaceForces"),
+                cs.get<List<scalar>>("dragFaceCoefficients")
+            );
+        }
         Info<< "iceDEM: pending ice load from the state: force "
             << pendingForce_ << " N, moment " << pendingMoment_ << " N m"
             << nl;
@@ -737,6 +763,11 @@ void Foam::iceDEMCoupling::solve()
     const scalar t0 = w.time();
     const scalar span = t1 - t0;
 
+    if (reaction_)
+    {
+        // The impulse the implicit part gave the flow in the flow step
+        reaction_->correct();
+    }
     if (flow_)
     {
         flow_->update();
@@ -772,6 +803,7 @@ void Foam::iceDEMCoupling::solve()
             }
 
             // Steps of exactly dt (see iceDEMCase::advanceTo)
+            scalar hStep = dt;
             if (!last)
             {
                 w.step();
@@ -783,9 +815,14 @@ void Foam::iceDEMCoupling::solve()
             }
             else
             {
-                w.advanceTo(t1);
+                w.advanceTo(t1);    // one step of 'remaining'
+                hStep = remaining;
             }
             ++steps;
+            if (reaction_)
+            {
+                flow_->accumulate(hStep);
+            }
 
             const scalar h = (last ? t1 : w.time()) - tPrev;
             case_->stepDone(h);
@@ -841,6 +878,22 @@ void Foam::iceDEMCoupling::solve()
     }
     publishLoad();
 
+    if (reaction_)
+    {
+        // Over the flow step the source acts for (the DEM interval span
+        // differs from it by round-off of the time values only)
+        reaction_->update(runTime_.deltaTValue());
+
+        labelList nFaces;
+        List<vector> F;
+        List<scalar> K;
+        flow_->getFaceDrag(nFaces, F, K);
+        dictionary& cs = case_->couplingState();
+        cs.set("dragFaces", nFaces);
+        cs.set("dragFaceForces", F);
+        cs.set("dragFaceCoefficients", K);
+    }
+
     if (loadFile_.valid())
     {
         loadFile_()
@@ -874,6 +927,36 @@ void Foam::iceDEMCoupling::solve()
         }
         Info<< nl;
     }
+}
+
+
+Foam::tmp<Foam::fvVectorMatrix> Foam::iceDEMCoupling::momentumSource
+(
+    const volVectorField& U
+) const
+{
+    if (!reaction_)
+    {
+        FatalErrorInFunction
+            << "momentumSource() without two-way coupling" << nl
+            << exit(FatalError);
+    }
+    return reaction_->source(U);
+}
+
+
+Foam::tmp<Foam::volVectorField> Foam::iceDEMCoupling::explicitMomentumSource
+(
+    const volVectorField& U
+) const
+{
+    if (!reaction_)
+    {
+        FatalErrorInFunction
+            << "explicitMomentumSource() without two-way coupling" << nl
+            << exit(FatalError);
+    }
+    return reaction_->explicitSource(U);
 }
 
 

@@ -36,6 +36,45 @@ namespace
     //  scatter matrix) below this fraction of the largest count as none
     //  (round-off of points that lie in one plane)
     constexpr double relativeSpreadCutoff = 1e-9;
+
+    //- A boolean entry (true/false, on/off, yes/no); FatalIOError naming
+    //  the entry for anything else
+    bool readSwitch(const Foam::dictionary& dict, const Foam::word& key, bool deflt)
+    {
+        using namespace Foam;
+        const entry* e = dict.findEntry(key, keyType::LITERAL);
+        if (!e)
+        {
+            return deflt;
+        }
+        ITstream& is = e->stream();
+        const token t(is);
+        if (t.isWord() && is.nRemainingTokens() == 0)
+        {
+            const Switch sw(t.wordToken(), true);
+            if (sw.valid())
+            {
+                return bool(sw);
+            }
+        }
+        if (t.isBool() && is.nRemainingTokens() == 0)
+        {
+            return t.boolToken();
+        }
+        FatalIOErrorInFunction(dict)
+            << "Entry '" << key << "' must be a boolean (true or false,"
+            << " on or off, yes or no), not ";
+        if (is.size() == 1)
+        {
+            FatalIOError << "'" << t << "'";
+        }
+        else
+        {
+            FatalIOError << is.size() << " tokens";
+        }
+        FatalIOError << nl << exit(FatalIOError);
+        return deflt;
+    }
 }
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
@@ -62,8 +101,10 @@ Foam::resolvedFlowVelocity::resolvedFlowVelocity
     Ucurrent_(nullptr),
     world_(nullptr),
     treeBuilt_(false),
+    twoWay_(false),
     unprepared_(0)
 {
+    twoWay_ = readSwitch(dragDict, "twoWay", false);
     if (!mesh_.foundObject<volVectorField>(UName_))
     {
         FatalIOErrorInFunction(dragDict)
@@ -237,7 +278,8 @@ void Foam::resolvedFlowVelocity::samplePoints
     const ::iceDEM::Drag& drag,
     int i,
     std::vector<::iceDEM::Vec3>& points,
-    std::vector<int>& faces
+    std::vector<int>& faces,
+    std::vector<double>& pointAreas
 ) const
 {
     // The traversal of iceDEM::Drag::bodyDrag (same order, same arithmetic)
@@ -245,6 +287,7 @@ void Foam::resolvedFlowVelocity::samplePoints
 
     points.clear();
     faces.clear();
+    pointAreas.clear();
 
     const ::iceDEM::Body& b = world.bodies()[i];
     static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
@@ -293,6 +336,7 @@ void Foam::resolvedFlowVelocity::samplePoints
                 ::iceDEM::faceTriangleSamples(face, k, s.subdivision, pts, areas);
             points.insert(points.end(), pts, pts + m);
             faces.insert(faces.end(), m, f);
+            pointAreas.insert(pointAreas.end(), areas, areas + m);
         }
     }
 }
@@ -376,6 +420,9 @@ void Foam::resolvedFlowVelocity::sampleAll
         found_.assign(N, {});
         cursor_.assign(N, 0);
         sampled_.assign(N, 0);
+        areas_.assign(N, {});
+        cells_.assign(N, {});
+        hits_.assign(N, {});
     }
 
     // 1.-2. Sample points and local interpolation, per body
@@ -392,11 +439,13 @@ void Foam::resolvedFlowVelocity::sampleAll
             continue;
         }
         sampled_[i] = 1;
-        samplePoints(world, drag, i, pts, pointFaces_[i]);
+        samplePoints(world, drag, i, pts, pointFaces_[i], areas_[i]);
 
         const size_t n = pts.size();
         values_[i].resize(n);
         found_[i].resize(n);
+        cells_[i].resize(n);
+        hits_[i].resize(n);
         label hint = hint_[i];
         for (size_t k = 0; k < n; ++k)
         {
@@ -407,12 +456,16 @@ void Foam::resolvedFlowVelocity::sampleAll
                 const vector u = interpolate(p, celli);
                 values_[i][k] = ::iceDEM::Vec3(u.x(), u.y(), u.z());
                 found_[i][k] = 1;
+                cells_[i][k] = celli;
+                hits_[i][k] = 1;
                 hint = celli;
             }
             else
             {
                 values_[i][k].setZero();
                 found_[i][k] = 0;
+                cells_[i][k] = -1;
+                hits_[i][k] = 0;
             }
         }
         hint_[i] = hint;
@@ -460,6 +513,7 @@ void Foam::resolvedFlowVelocity::sampleAll
             for (size_t k = 0; k < points_[i].size(); ++k)
             {
                 const scalar hits = buf[m + 3];
+                hits_[i][k] = label(hits + 0.5);
                 if (hits > 0)
                 {
                     values_[i][k] =
@@ -560,6 +614,11 @@ void Foam::resolvedFlowVelocity::prepare
         FatalErrorInFunction
             << "resolved drag: update() was not called before the DEM step"
             << nl << exit(FatalError);
+    }
+    if (twoWay_ && faceDrag_.size() != world.bodies().size())
+    {
+        // Serial, before the threads of the force evaluation
+        faceDrag_.resize(world.bodies().size());
     }
     if (!samplePerDemStep_ && sampledThisStep_)
     {
