@@ -273,6 +273,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
     // The last complete time at or before it
     const info* from = nullptr;
     word fromName;
+    scalar fromValue = 0;
     for (const auto& t : times)
     {
         if
@@ -283,6 +284,30 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
         {
             from = &t.second;
             fromName = t.first;
+            fromValue = t.second.value;
+        }
+    }
+
+    // None: a case whose initial state is not a time directory (iceDEMFoam
+    // reads constant/iceField) starts over from the controlDict's startTime,
+    // as its first run did, if no directory of that time exists
+    bool fromCaseStart = false;
+    if (!from)
+    {
+        scalar caseStart = 0;
+        ctrl.readIfPresent("startTime", caseStart);
+        bool startHasDir = false;
+        for (const auto& t : times)
+        {
+            startHasDir = startHasDir
+             || mag(t.second.value - caseStart)
+                <= 1e-12*max(scalar(1), mag(caseStart));
+        }
+        if (!startHasDir && caseStart < wanted->value)
+        {
+            fromCaseStart = true;
+            fromValue = caseStart;
+            fromName = Time::timeName(caseStart);
         }
     }
 
@@ -292,7 +317,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
     {
         if
         (
-            (!from || t.second.value > from->value)
+            (!(from || fromCaseStart) || t.second.value > fromValue)
          && t.second.value <= wanted->value
         )
         {
@@ -311,7 +336,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
         return word(s, false);
     };
 
-    if (!from)
+    if (!from && !fromCaseStart)
     {
         FatalErrorInFunction
             << "The start time " << wantedName << " ("
@@ -335,14 +360,19 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
     }
     Warning
         << "iceDEM restart: starting from " << fromName
-        << ", the last complete time before " << wantedName << " ("
+        << (
+               fromCaseStart
+             ? ", the case's startTime (no complete time was written), before "
+             : ", the last complete time before "
+           )
+        << wantedName << " ("
         << (startFrom == "latestTime" ? "startFrom latestTime" : "startTime")
         << " in " << dictPath << ")" << nl << endl;
 
     // OpenFOAM's Time from the controlDict read above with the start time
     // replaced (in memory only: the user's file is not touched)
     ctrl.set("startFrom", word("startTime"));
-    ctrl.set("startTime", from->value);
+    ctrl.set("startTime", fromValue);
 
     const bool functionObjects =
         argList::validOptions.found("withFunctionObjects")
