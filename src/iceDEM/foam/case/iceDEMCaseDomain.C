@@ -41,7 +41,11 @@ void Foam::iceDEMCase::readDomain()
             << nl << exit(FatalIOError);
     }
     const dictionary& d = properties_.subDict("domain");
-    checkKeywords(d, {"type", "x", "y"}, "domain");
+    checkEntries
+    (
+        d, "constant/iceDEMProperties", {"domain", "domain(type periodic)"},
+        "domain"
+    );
 
     const word type = selectName(d, "type", wordList{"none", "periodic"});
     if (type == "none")
