@@ -50,7 +50,11 @@ void Foam::iceDEMCase::readDomain()
         readInflowOutflow(d);
         return;
     }
-    checkKeywords(d, {"type", "x", "y"}, "domain");
+    checkEntries
+    (
+        d, "constant/iceDEMProperties", {"domain", "domain(type periodic)"},
+        "domain"
+    );
     if (type == "none")
     {
         return;

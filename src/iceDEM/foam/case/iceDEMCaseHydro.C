@@ -43,7 +43,10 @@ void addFloeDamping
     if (dptr)
     {
         const dictionary& d = *dptr;
-        checkKeywords(d, {"heave", "rollPitch"}, "floeDamping");
+        checkEntries
+        (
+            d, "constant/iceDEMProperties", {"floeDamping"}, "floeDamping"
+        );
         s.heave = nonNegative(d, "heave", s.heave);
         s.rollPitch = nonNegative(d, "rollPitch", s.rollPitch);
         coreCall(d, "floeDamping", [&]{ ::iceDEM::checkFloeDampingSettings(s); });
@@ -70,14 +73,11 @@ void addWind
     const dictionary* dptr = props.findDict("wind", keyType::LITERAL);
     if (!dptr) return;
     const dictionary& d = *dptr;
-    checkKeywords
+    // The entries of the other type may stay when the type is switched
+    checkEntries
     (
-        d,
-        {
-            ICEDEM_WIND_HISTORY_KEYWORDS,
-            "rhoAir", "Cs", "Cf", "subdivision", "topCosine"
-        },
-        "wind"
+        d, "constant/iceDEMProperties",
+        {"wind", "wind(type uniform)", "wind(type table)"}, "wind"
     );
     const ::iceDEM::WindHistory history = readWindHistory(d);
     ::iceDEM::WindSettings s;

@@ -131,17 +131,10 @@ void readThickness(const dictionary& dict, ::iceDEM::ThicknessSettings& t)
 
 void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
 {
-    checkKeywords
+    checkEntries
     (
-        d,
-        {
-            "type", "direction", "upstream", "downstream", "stripWidth",
-            "interval", "material", "fieldDict", "lateral", "window",
-            "concentration", "meanFloeArea", "thickness", "radius", "seed",
-            "lloydIterations", "velocity", "iceDensity", "waterDensity",
-            "waterLevel", "minCoreEdgeRatio", "minCoreWidthRatio"
-        },
-        "domain"
+        d, "constant/iceDEMProperties",
+        {"domain", "domain(type inflowOutflow)"}, "domain"
     );
 
     ::iceDEM::InflowOutflowSettings s;

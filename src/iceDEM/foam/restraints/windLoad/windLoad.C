@@ -93,13 +93,10 @@ bool Foam::sixDoFRigidBodyMotionRestraints::windLoad::read
     sixDoFRigidBodyMotionRestraint::read(sDoFRBMRDict);
 
     const dictionary& d = sDoFRBMRCoeffs_;
-    checkKeywords
+    checkEntries
     (
-        d,
-        {
-            "sixDoFRigidBodyMotionRestraint", ICEDEM_WIND_HISTORY_KEYWORDS,
-            "rhoAir", "Cd", "area", "centreOfPressure"
-        },
+        d, "constant/dynamicMeshDict",
+        {"sixDoFRigidBodyMotionCoeffs/restraints/*(sixDoFRigidBodyMotionRestraint windLoad)"},
         "restraint " + name_ + " (windLoad)"
     );
     wind_ = readWindHistory(d);

@@ -522,16 +522,9 @@ bool Foam::functionObjects::iceLoadStatistics::read(const dictionary& dict)
     using namespace iceDEMChecks;
 
     dict_ = dict;
-    checkKeywords
+    checkEntries
     (
-        dict,
-        {
-            "type", "libs", "enabled", "log", "timeStart", "timeEnd",
-            "executeControl", "executeInterval", "writeControl",
-            "writeInterval", "region",
-            "structure", "walls", "mooring", "transient", "batches",
-            "confidence", "minBatchSize", "stopAtHalfWidth"
-        },
+        dict, "system/controlDict", {"functions/*(type iceLoadStatistics)"},
         "function object " + name()
     );
 

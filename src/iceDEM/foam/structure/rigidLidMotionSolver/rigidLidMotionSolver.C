@@ -83,6 +83,19 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
             << ": rigidLidSixDoFRigidBodyMotion moves the whole mesh"
             << " rigidly; remove the entry" << nl << exit(FatalIOError);
     }
+    // A misspelt optional entry would be ignored (the stock motion reads
+    // its entries with defaults). Coefficients at the top level of
+    // dynamicMeshDict (no Coeffs dictionary) share it with the mesh's own
+    // entries and are not checked.
+    if (dict.isDict(typeName + "Coeffs"))
+    {
+        iceDEMChecks::checkEntries
+        (
+            coeffDict(), "constant/dynamicMeshDict",
+            {"rigidLidSixDoFRigidBodyMotionCoeffs"},
+            "rigidLidSixDoFRigidBodyMotionCoeffs"
+        );
+    }
 }
 
 

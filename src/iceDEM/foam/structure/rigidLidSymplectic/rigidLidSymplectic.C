@@ -43,10 +43,10 @@ Foam::sixDoFSolvers::rigidLidSymplectic::readMode
             << " quadraticDamping ..; }" << nl << exit(FatalIOError);
     }
     const dictionary& d = dict.subDict(name);
-    iceDEMChecks::checkKeywords
+    iceDEMChecks::checkEntries
     (
-        d,
-        {"addedMass", "linearDamping", "quadraticDamping"},
+        d, "constant/dynamicMeshDict",
+        {"*/solver(type rigidLidSymplectic)/*"},
         "rigidLidSymplectic " + name
     );
     c.addedMass = iceDEMChecks::nonNegative(d, "addedMass", 0);
@@ -67,10 +67,10 @@ Foam::sixDoFSolvers::rigidLidSymplectic::rigidLidSymplectic
     roll_(),
     pitch_()
 {
-    iceDEMChecks::checkKeywords
+    iceDEMChecks::checkEntries
     (
-        dict,
-        {"type", "heave", "roll", "pitch"},
+        dict, "constant/dynamicMeshDict",
+        {"*/solver(type rigidLidSymplectic)"},
         "solver (rigidLidSymplectic)"
     );
     heave_ = readMode(dict, "heave");
