@@ -446,13 +446,20 @@ SubmergedVolume submergedVolume
 }
 
 
-bool submergedFace
+namespace
+{
+
+//- The part of face f strictly on the kept side of the plane z = level:
+//  below (keepBelow) or above it. s is the height on the side cut away, so
+//  the same clip serves both (negating s is exact)
+bool clippedFace
 (
     const PolyhedronView& P,
     int f,
     const Mat3& R,
     const Vec3& x,
     double level,
+    bool keepBelow,
     SubmergedFace& out
 )
 {
@@ -462,7 +469,7 @@ bool submergedFace
     {
         throw Error
         (
-            "water clipping: face " + std::to_string(f) + " has "
+            "water-plane clipping: face " + std::to_string(f) + " has "
           + std::to_string(n) + " vertices, more than the capacity "
           + std::to_string(SubmergedFace::maxVertices - 1)
           + " of SubmergedFace::maxVertices - 1"
@@ -475,13 +482,13 @@ bool submergedFace
 
     const auto V = P.vertices();
 
-    // Sutherland-Hodgman against the half-space z < level (world frame)
+    // Sutherland-Hodgman against the half-space s < 0 (world frame)
     Vec3 prev = R*V[P.faceVertex(f, n - 1)] + x;
-    double sPrev = prev.z() - level;
+    double sPrev = keepBelow ? prev.z() - level : level - prev.z();
     for (int k = 0; k < n; ++k)
     {
         const Vec3 cur = R*V[P.faceVertex(f, k)] + x;
-        const double sCur = cur.z() - level;
+        const double sCur = keepBelow ? cur.z() - level : level - cur.z();
         if (sCur < 0)
         {
             if (sPrev >= 0)
@@ -526,6 +533,36 @@ bool submergedFace
     out.area = area;
     out.centroid = first/area;
     return true;
+}
+
+} // End anonymous namespace
+
+
+bool submergedFace
+(
+    const PolyhedronView& P,
+    int f,
+    const Mat3& R,
+    const Vec3& x,
+    double level,
+    SubmergedFace& out
+)
+{
+    return clippedFace(P, f, R, x, level, true, out);
+}
+
+
+bool emergedFace
+(
+    const PolyhedronView& P,
+    int f,
+    const Mat3& R,
+    const Vec3& x,
+    double level,
+    SubmergedFace& out
+)
+{
+    return clippedFace(P, f, R, x, level, false, out);
 }
 
 
