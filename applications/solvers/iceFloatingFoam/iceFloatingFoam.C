@@ -37,7 +37,9 @@ Description
       0. the ice load averaged over the previous DEM interval is registered
          on the Time database (iceLoadForce, iceLoadMoment) for the iceLoad
          restraint; the old sixDoF state is kept;
-      1. mesh.update(): the sixDoF motion and the mesh motion;
+      1. mesh.update(): the sixDoF motion and the mesh motion (with
+         flowSolveInterval > 1: the sixDoF motion every step, the mesh
+         only on the steps that solve the flow);
       2. PIMPLE: U, p and turbulence on the moved mesh;
       3. DEM: sub-cycles from t - deltaT to t with its own step, the
          structure's pose interpolated between the old and new sixDoF
@@ -109,6 +111,17 @@ static const sixDoFRigidBodyMotion* structureMotionOf
     return rigidLid ? &rigidLid->motion() : nullptr;
 }
 
+
+//- The motion solver of a dynamicMotionSolverFvMesh (nullptr for other
+//  dynamic meshes), to move the structure and the mesh separately
+static motionSolver* meshMotionOf(dynamicFvMesh& mesh)
+{
+    auto* dm = dynamic_cast<dynamicMotionSolverFvMesh*>(&mesh);
+
+    // The mesh owns its (non-const) motion solver and hands it out const
+    return dm ? &const_cast<motionSolver&>(dm->motion()) : nullptr;
+}
+
 } // End namespace Foam
 
 
@@ -157,6 +170,7 @@ int main(int argc, char *argv[])
     turbulence->validate();
 
     const sixDoFRigidBodyMotion* hullPtr = structureMotionOf(mesh);
+    motionSolver* meshMotion = meshMotionOf(mesh);
     if (!hullPtr)
     {
         WarningInFunction
@@ -218,22 +232,18 @@ int main(int argc, char *argv[])
 
         // The flow is solved every flowSolveInterval-th step (a steady
         // current), over the time since its last solution: flow step =
-        // flowSolveInterval x deltaT, the structure, the mesh and the DEM
-        // still advance every deltaT. In between, the flow fields are kept
-        // and the fluid force of the last solution acts (its pressure holds
-        // the flow's reaction to the hull's mean acceleration over the flow
-        // step: the same impulse). The mesh is moved with deltaT (mesh flux
-        // = the mesh's velocity); under the rigid planar motion the cell
-        // volumes do not change, so the longer flow step on it is consistent.
+        // flowSolveInterval x deltaT; the structure and the DEM still
+        // advance every deltaT. In between, the flow fields and the mesh are
+        // kept and the fluid force of the last solution acts (its pressure
+        // holds the flow's reaction to the hull's mean acceleration over the
+        // flow step: the same impulse). The mesh follows the structure at
+        // the flow steps, over the flow step (moveStructure.H): its flux is
+        // the mean mesh velocity over the step the flow is solved for.
         const scalar deltaT = runTime.deltaTValue();
         const bool solveFlow = (runTime.timeIndex() % flowSolveInterval == 0);
-        if (!solveFlow || flowSolveInterval > 1)
+        if (flowSolveInterval > 1)
         {
-            #include "moveMesh.H"
-        }
-        if (solveFlow && flowSolveInterval > 1)
-        {
-            runTime.setDeltaT(flowSolveInterval*deltaT, false);
+            #include "moveStructure.H"
         }
 
         // --- Pressure-velocity PIMPLE corrector loop

@@ -58,7 +58,11 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
     rhoName_(coeffDict().getOrDefault<word>("rho", "rho")),
     rhoInf_(1),
     Q0_(iceDEMChecks::rotationTensor(coeffDict(), "orientation")),
-    curTimeIndex_(-1)
+    curTimeIndex_(-1),
+    flowForce_(Zero),
+    flowMoment_(Zero),
+    forceCofR_(Zero),
+    forceEvents_(label(-1))
 {
     // The only mesh motion a rigid lid allows
     iceDEMChecks::selectName
@@ -96,6 +100,58 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
             "rigidLidSixDoFRigidBodyMotionCoeffs"
         );
     }
+}
+
+
+Foam::FixedList<Foam::label, 4> Foam::rigidLidMotionSolver::flowEvents()
+const
+{
+    // polyMesh::movePoints and every non-const access to a field give
+    // them a new event number
+    FixedList<label, 4> events;
+    const wordList names({"points", "p", "U", "nut"});
+    forAll(names, i)
+    {
+        const regIOobject* obj = mesh().findObject<regIOobject>(names[i]);
+        events[i] = obj ? obj->eventNo() : -1;
+    }
+    return events;
+}
+
+
+void Foam::rigidLidMotionSolver::flowForce(vector& F, vector& M)
+{
+    const point cofR = motion_.centreOfRotation();
+    const FixedList<label, 4> events = flowEvents();
+
+    if (events != forceEvents_)
+    {
+        // The pressure and viscous stress on the patches: the viscous part
+        // evaluates the turbulence model's stress over the whole mesh
+        const Time& t = mesh().time();
+        dictionary forcesDict;
+        forcesDict.add("type", functionObjects::forces::typeName);
+        forcesDict.add("patches", patches_);
+        forcesDict.add("rhoInf", rhoInf_);
+        forcesDict.add("rho", rhoName_);
+        forcesDict.add("CofR", cofR);
+        functionObjects::forces f("forces", t, forcesDict);
+        f.calcForcesMoment();
+
+        flowForce_ = f.forceEff();
+        flowMoment_ = f.momentEff();
+        forceCofR_ = cofR;
+        forceEvents_ = events;
+
+        DebugInfo
+            << typeName << ": fluid force evaluated at t = " << t.timeName()
+            << " (events of points, p, U, nut: " << events << ")" << endl;
+    }
+
+    // Unchanged mesh and fields (a step without a flow solution and without
+    // mesh motion): the same force; its moment moved to the current centre
+    F = flowForce_;
+    M = flowMoment_ + ((forceCofR_ - cofR) ^ flowForce_);
 }
 
 
@@ -147,17 +203,9 @@ void Foam::rigidLidMotionSolver::solve()
 
     // The flow's force and moment about the centre of rotation; only the
     // horizontal force and the yaw moment act on the structure
-    dictionary forcesDict;
-    forcesDict.add("type", functionObjects::forces::typeName);
-    forcesDict.add("patches", patches_);
-    forcesDict.add("rhoInf", rhoInf_);
-    forcesDict.add("rho", rhoName_);
-    forcesDict.add("CofR", motion_.centreOfRotation());
-    functionObjects::forces f("forces", t, forcesDict);
-    f.calcForcesMoment();
+    vector F, Mom;
+    flowForce(F, Mom);
 
-    const vector F = f.forceEff();
-    const vector Mom = f.momentEff();
     const scalar m = motion_.mass();
 
     motion_.update
