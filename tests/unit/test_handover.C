@@ -510,8 +510,11 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
 // jumps where a contact is handed over, by design. Five random hull pairs,
 // 1440 poses per turn, overlap 5e-3 (5 % of r_A + r_B): the jump of
 // |F_hertz|/|F_hertzSimplified| at the same poses isolates R*'s part (the
-// raw jumps of |F| are printed too: hertzSimplified's, up to 0.47, are the
-// geometry's own, see README.md, known limits)
+// raw jumps of |F| are printed too: hertzSimplified's, up to 0.485, are the
+// geometry's own: the two that stay when the poses are doubled (0.485 and
+// 0.319 at seeds 108 and 101) are two crossings of one edge with two sides
+// of a face merging at the face's corner, see README.md, known limits; so
+// hertzSimplified's continuity is not asserted yet)
 TEST(handover, hertzForceJumpAtHandOverIsBounded)
 {
     const int poses = std::getenv("SWEEP_POSES") ? std::atoi(std::getenv("SWEEP_POSES")) : 1440;
