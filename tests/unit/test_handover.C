@@ -9,6 +9,7 @@
 #include "contact/NarrowPhase.H"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -56,6 +57,8 @@ struct ImpactRecord
     double worst = 0;       //!< largest |E after - E before|/E0 of an impact
     double drift = 0;       //!< (E_end - E0)/E0
     double deepest = 0;     //!< largest overlap/smaller radius (broad battery)
+    double youngsModulus = 0;   //!< chosen (broad battery)
+    double timeStep = 0;
 };
 
 //- Two random hulls (7 and 10 vertices, r = 0.05), e = 1, mu = 0, gravity,
@@ -122,10 +125,10 @@ ImpactRecord randomPairInABox(unsigned seed, double duration, const std::string&
     return r;
 }
 
-//- A hull of a random point cloud of n points (4 to 20), Gaussian along
-//  three random half-axes of 0.5 to 1 times scale: not every point need be
-//  a vertex (at least 4 are)
-ConvexPolyhedron cloudHull(std::mt19937_64& rng, int n, double scale)
+//- A random point cloud of n points (4 to 20), Gaussian along three random
+//  half-axes of 0.5 to 1 times scale (its hull: not every point need be a
+//  vertex; at least 4 are)
+std::vector<Vec3> cloud(std::mt19937_64& rng, int n, double scale)
 {
     std::normal_distribution<double> g(0, 1);
     std::uniform_real_distribution<double> u(0.5, 1);
@@ -135,27 +138,51 @@ ConvexPolyhedron cloudHull(std::mt19937_64& rng, int n, double scale)
     {
         p.push_back(scale*Vec3(axes.x()*g(rng), axes.y()*g(rng), axes.z()*g(rng)));
     }
-    return ConvexPolyhedron::hull(p);
+    return p;
 }
+
+//- Largest extent of a body in the broad battery: its origin at x = -+0.75
+//  in the box [-1.5, 1.5]^3, it touches neither the walls nor the other body
+//  at the start (a Gaussian cloud's outliers reach 3 scales: before, some
+//  cores crossed a wall at the start and the wall contact's energy, far
+//  outside the model, was released in the first steps)
+constexpr double broadMaxExtent = 0.72;
 
 //- The battery broadened as issue 18 asks: two hulls of random clouds of 4
 //  to 20 points (scales 0.3 to 0.6), random radii (0.02 to 0.08), densities
 //  (mass ratio up to about 100), orientations and velocities, e = 1, mu =
-//  0, gravity, six walls; the time step scaled from the reference pair's
-//  2e-5 s by the Hertz contact time, m*^(2/5) R*^(-1/5), so that no
-//  contact has fewer steps than the reference's (about 200)
-ImpactRecord broadPairInABox(unsigned seed, double duration, const std::string& model)
+//  0, gravity, six walls.
+//  The model (Hertz between dilated shapes) holds while an overlap stays
+//  below the dilation radius. Young's modulus is chosen for each pair so
+//  that no overlap can exceed half the smaller radius: one contact cannot
+//  store more than the energy the pair can release, E_free = kinetic + m g
+//  (height above the floor) summed over both bodies, and the Hertz energy
+//  8/15 E* sqrt(R*) delta^(5/2) at delta = r_min/2 with the smallest R* of
+//  the pair (r_A r_B/(r_A + r_B), the walls' being r) must hold it:
+//      E* >= 15 E_free/(8 sqrt(R*) (r_min/2)^(5/2)),
+//  E = max(1e10 Pa, 2 (1 - nu^2) E*). The time step is scaled from the
+//  reference pair's 2e-5 s (m* = 180 kg, R* = 0.025 m, E = 1e9 Pa) by the
+//  Hertz contact time, m*^(2/5) R*^(-1/5) E^(-2/5), so that no contact has
+//  fewer steps than the reference's (about 200)
+ImpactRecord broadPairInABox
+(
+    unsigned seed,
+    double duration,
+    const std::string& model,
+    double youngsModulus = 0
+)
 {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     std::uniform_int_distribution<int> nPoints(4, 20);
     auto in = [&](double a, double b) { return a + (b - a)*0.5*(1 + u(rng)); };
+    const double E = youngsModulus > 0 ? youngsModulus : 1e10;
     WorldSettings s;
     s.timeStep = 2e-5;
     s.contact.model = model;
     World w(s);
-    const int ma = w.addMaterial(ice(1e10, 900));
-    Material heavy = ice(1e10, 900*std::pow(10.0, u(rng)));
+    const int ma = w.addMaterial(ice(E, 900));
+    Material heavy = ice(E, 900*std::pow(10.0, u(rng)));
     heavy.name = "ice2";
     const int mb = w.addMaterial(heavy);
     for (int i : {ma, mb})
@@ -170,7 +197,17 @@ ImpactRecord broadPairInABox(unsigned seed, double duration, const std::string& 
             r = in(0.02, 0.08);
             try
             {
-                return w.addShape(DilatedShape(cloudHull(rng, nPoints(rng), in(0.3, 0.6)), r));
+                // A cloud reaching farther than broadMaxExtent (with the
+                // radius) from its input frame's origin, where addBody puts
+                // it, is scaled down to it
+                std::vector<Vec3> p = cloud(rng, nPoints(rng), in(0.3, 0.6));
+                double far = 0;
+                for (const Vec3& v : p) far = std::max(far, v.norm());
+                if (far + r > broadMaxExtent)
+                {
+                    for (Vec3& v : p) v *= (broadMaxExtent - r)/far;
+                }
+                return w.addShape(DilatedShape(ConvexPolyhedron::hull(p), r));
             }
             catch (const Error&) {}
         }
@@ -196,35 +233,51 @@ ImpactRecord broadPairInABox(unsigned seed, double duration, const std::string& 
     {
         const Quat q = pose();
         const Vec3 v = vec(3);
-        w.addBody(sa, ma, Vec3(-0.7, 0, 0), q, v, vec(3));
+        w.addBody(sa, ma, Vec3(-0.75, 0, 0), q, v, vec(3));
     }
     {
         const Quat q = pose();
         const Vec3 v = vec(3);
-        w.addBody(sb, mb, Vec3(0.7, 0, 0), q, v, vec(3));
+        w.addBody(sb, mb, Vec3(0.75, 0, 0), q, v, vec(3));
     }
-    // Reference: m* = 180 kg, R* = 0.025 m, E = 1e9 Pa (the 7- and
-    // 10-vertex pair); here E = 1e10 Pa (overlaps 2.5 times smaller: the
-    // radii go down to 0.02 m)
+    const double rMin = std::min(rA, rB);
     const double m1 = w.bodies()[0].mass, m2 = w.bodies()[1].mass;
     const double mStar = std::min(m1*m2/(m1 + m2), 0.5*std::min(m1, m2));
     const double rStar = std::max(rA*rB/(rA + rB), std::max(rA, rB));
     w.setTimeStep
     (
-        std::min(1.0, std::pow(mStar/180, 0.4)*std::pow(rStar/0.025, -0.2))*2e-5*std::pow(10.0, -0.4)
+        std::min(1.0, std::pow(mStar/180, 0.4)*std::pow(rStar/0.025, -0.2))
+       *2e-5*std::pow(E/1e9, -0.4)
     );
     w.initialise();
+    if (!(youngsModulus > 0))
+    {
+        // Young's modulus from the bound above (the energies once
+        // initialised), then the same pair again
+        const Energies e = w.energies();
+        double free = e.kinetic + e.gravitational;
+        for (const Body& b : w.bodies()) free += b.mass*(-s.gravity.z())*1.5;
+        const double nu = heavy.poissonsRatio;
+        const double rStarMin = rA*rB/(rA + rB);
+        const double EstarNeeded = 15*free/(8*std::sqrt(rStarMin)*std::pow(0.5*rMin, 2.5));
+        return broadPairInABox
+        (
+            seed, duration, model, std::max(1e10, 2*(1 - nu*nu)*EstarNeeded)
+        );
+    }
 
     ImpactRecord r;
+    r.youngsModulus = E;
+    r.timeStep = w.settings().timeStep;
     const double E0 = totalEnergy(w);
     double before = E0;
     bool inContact = false;
     while (w.time() < duration)
     {
-        const double E = totalEnergy(w);
+        const double Ebefore = totalEnergy(w);
         w.step();
         const bool c = w.contactCount() > 0;
-        if (c && !inContact) before = E;
+        if (c && !inContact) before = Ebefore;
         if (!c && inContact)
         {
             ++r.impacts;
@@ -234,7 +287,7 @@ ImpactRecord broadPairInABox(unsigned seed, double duration, const std::string& 
         {
             for (const World::ContactInfo& ci : w.contacts())
             {
-                r.deepest = std::max(r.deepest, ci.overlap/std::min(rA, rB));
+                r.deepest = std::max(r.deepest, ci.overlap/rMin);
             }
         }
         inContact = c;
@@ -267,15 +320,20 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 }
 
 
-// The battery the issue asks for: 40 random pairs, about 2,000 impacts.
+// The first battery (randomPairInABox: hulls of 7 and 10 points on a
+// sphere's shell, E = 1e9 Pa, 5 s each): 40 seeds, about 2,000 impacts.
 // Disabled: it still fails (see README.md, known limits). Old windows: 17
-// of the 37 pairs (2,040 impacts; three seeds draw a degenerate hull) had
-// an impact above the bound, the worst +202 %; with the bands: 5 of 37
-// (2,049 impacts), 1.7e-4 to 5.7e-2, where a patch corner inside its band
-// reaches the end of its edge (edge-edge -> vertex-edge, which has no band)
-// or two corners of a shrinking patch merge. Run it with
-// --gtest_also_run_disabled_tests (about 10 s of CPU)
-TEST(handover, DISABLED_randomPolyhedraConserveEnergyAtEveryImpact)
+// of the 37 pairs (three seeds draw a degenerate hull) had an impact above
+// the bound, the worst +202 %; with the bands: 5 of 37 (2,048 impacts),
+// 1.7e-4 to 5.7e-2, all where two corners of a shrinking patch merge (the
+// others keep every impact within 2.2e-5): a band crossing reaching the
+// end of its edge next to a vertex-face corner (seed 36), a vertex-face
+// corner inside its band reaching its face's side next to a crossing (seeds
+// 4, 37), two crossings of one edge with the two sides of a face meeting at
+// the face's corner (seed 40), a nearly parallel crossing leaving its wedge
+// (seed 39). Run it with --gtest_also_run_disabled_tests (about 10 s of
+// CPU)
+TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
     int impacts = 0;
     for (unsigned seed = 1; seed <= 40; ++seed)
@@ -452,8 +510,11 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
 // jumps where a contact is handed over, by design. Five random hull pairs,
 // 1440 poses per turn, overlap 5e-3 (5 % of r_A + r_B): the jump of
 // |F_hertz|/|F_hertzSimplified| at the same poses isolates R*'s part (the
-// raw jumps of |F| are printed too: hertzSimplified's, up to 0.47, are the
-// geometry's own, see README.md, known limits)
+// raw jumps of |F| are printed too: hertzSimplified's, up to 0.485, are the
+// geometry's own: the two that stay when the poses are doubled (0.485 and
+// 0.319 at seeds 108 and 101) are two crossings of one edge with two sides
+// of a face merging at the face's corner, see README.md, known limits; so
+// hertzSimplified's continuity is not asserted yet)
 TEST(handover, hertzForceJumpAtHandOverIsBounded)
 {
     const int poses = std::getenv("SWEEP_POSES") ? std::atoi(std::getenv("SWEEP_POSES")) : 1440;
@@ -529,63 +590,139 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
 }
 
 
-// The battery broadened (broadPairInABox): 40 random pairs, hertzSimplified.
-// Disabled: it fails. Of 40 seeds, 35 pairs run (5 start touching), 7,385
-// impacts. The 24 pairs whose overlaps stay below 0.7 r (1,010 impacts):
-// 23 keep every impact within 1e-6 of the total energy, seed 30 has one of
-// 4.8e-3 at overlaps of 0.2 r (a hand-over jump). 11 pairs overlap by 1.5
-// to 14 times the smaller radius (fast heavy bodies with thin radii: the
-// cores meet, outside the model) and change the energy by 1.7e-2 to 1.18
-// in one impact. Run it with --gtest_also_run_disabled_tests (about 30 s
-// of CPU)
-TEST(handover, DISABLED_broadRandomPairsConserveEnergyAtEveryImpact)
+// The random-shape energy battery (broadPairInABox): 40 random pairs of
+// hulls of clouds of 4 to 20 points, random radii, mass ratios, poses and
+// velocities, e = 1, mu = 0, hertzSimplified, colliding with each other and
+// with the six walls for 3 s each. Every impact (from the step before a
+// contact starts to the step after the last one ends, wall contacts
+// included) must keep the total energy within impactBound, each pair's
+// drift below 5e-3, and no overlap may reach half the smaller radius (the
+// model's range; Young's modulus is chosen for that, see broadPairInABox).
+// Measured (1 thread): 40 pairs, 1,393 impacts, the worst impact 1.5e-6 of
+// the total energy, the worst drift 2.2e-6, overlaps up to 0.49 r; about 30
+// s of CPU. Before the vertex-edge band (vertexEdgeBandWeight) one pair
+// (seed 6) changed the energy by 14 % in one impact: a vertex at the
+// shallow end of an edge lying along another edge appeared with its full
+// overlap as the two edges' sine fell below parallelEdgeSin
+TEST(handover, randomPolyhedraConserveEnergyAtEveryImpact)
 {
-    int impacts = 0, failing = 0, pairs = 0, deep = 0;
-    double worst = 0, worstValid = 0;
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);     // two bodies: threads only add waiting
+    int impacts = 0, pairs = 0;
+    double worst = 0, drift = 0, deepest = 0;
     for (unsigned seed = 1; seed <= 40; ++seed)
     {
-        ImpactRecord r;
-        try
-        {
-            r = broadPairInABox(seed, 3.0, "hertzSimplified");
-        }
-        catch (const Error& e)
-        {
-            std::printf("seed %u: skipped (%s)\n", seed, e.what());
-            continue;   // a degenerate hull
-        }
+        const ImpactRecord r = broadPairInABox(seed, 3.0, "hertzSimplified");
         ++pairs;
         impacts += r.impacts;
         worst = std::max(worst, r.worst);
-        if (!(r.worst < impactBound)) ++failing;
-        if (r.deepest > 0.5) ++deep;
-        else worstValid = std::max(worstValid, r.worst);
+        drift = std::max(drift, std::abs(r.drift));
+        deepest = std::max(deepest, r.deepest);
         std::printf
         (
-            "seed %u: %d impacts, worst %.3g, drift %.3g, deepest overlap %.2g r\n",
-            seed, r.impacts, r.worst, r.drift, r.deepest
+            "seed %u: %d impacts, worst %.3g, drift %.3g, deepest overlap %.2g r_min,"
+            " E %.3g Pa, dt %.3g s\n",
+            seed, r.impacts, r.worst, r.drift, r.deepest, r.youngsModulus, r.timeStep
         );
+        EXPECT_GE(r.impacts, 10) << "seed " << seed;
         EXPECT_LT(r.worst, impactBound) << "seed " << seed;
+        EXPECT_LT(std::abs(r.drift), 5e-3) << "seed " << seed;
+        EXPECT_LT(r.deepest, 0.5) << "seed " << seed;
     }
+    omp_set_num_threads(threads);
     std::printf
     (
-        "%d pairs, %d impacts, %d pairs above %g, worst %.3g; %d pairs overlap by more"
-        " than r/2, worst of the others %.3g\n",
-        pairs, impacts, failing, impactBound, worst, deep, worstValid
+        "%d pairs, %d impacts: worst impact %.3g of the total energy (bound %g),"
+        " worst drift %.3g, deepest overlap %.2g r_min\n",
+        pairs, impacts, worst, impactBound, drift, deepest
     );
+    EXPECT_GE(impacts, 1000);
 }
 
-
-// Enabled subset of the broadened battery: the first eight seeds that pass.
-// Chosen BECAUSE they pass (the battery above fails, see there); it keeps
-// the conserving part from regressing. Their overlaps stay below r/2
-TEST(handover, broadRandomPairsPassingSubsetConserveEnergy)
+// The weight of a vertex on an edge with a leaning, nearly parallel edge at
+// the vertex (vertexEdgeBandWeight) depends on the relative position as well
+// as the orientation: its gradients (dw/dx_B, and dw/dphi_B about the
+// contact point), which give the contact's extra force and couple, must be
+// those of the weight itself. Central differences, with the vertex on A and
+// then on B
+TEST(handover, vertexEdgeBandWeightGradientMatchesFiniteDifferences)
 {
-    for (unsigned seed : {1u, 2u, 3u, 4u, 6u, 8u, 9u, 10u})
+    // A box (top edge along x at y = 1, z = 0.5) and a tetrahedron whose
+    // vertex V sits above and beside that edge, one edge of V along x
+    // leaning down towards it (lean and cross about 0.028 < 0.05)
+    const Vec3 V(0, 1.03, 0.56);
+    const Vec3 d = Vec3(1, -0.02, -0.02).normalized();
+    const std::vector<Vec3> tet = {V, V + 0.6*d, V + Vec3(0, 0.5, 0.5), V + Vec3(0.3, 0.6, 0.2)};
+    for (int vertexOnA = 0; vertexOnA < 2; ++vertexOnA)
     {
-        const ImpactRecord r = broadPairInABox(seed, 3.0, "hertzSimplified");
-        EXPECT_GE(r.impacts, 20) << "seed " << seed;
-        EXPECT_LT(r.worst, impactBound) << "seed " << seed;
-        EXPECT_LT(r.deepest, 0.5) << "seed " << seed;
+        World w(WorldSettings{});
+        const int m = w.addMaterial(ice(1e9));
+        const int box = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(1, 1, 0.5)), 0.05));
+        const int t = w.addShape(DilatedShape(ConvexPolyhedron::hull(tet), 0.05));
+        const int first = vertexOnA ? t : box;
+        const int second = vertexOnA ? box : t;
+        w.addBody(first, m, Vec3::Zero());
+        w.addBody(second, m, Vec3::Zero());
+        // B's pose moved by a translation dx and a rotation dphi about p
+        auto find = [&](const Vec3& dx, const Vec3& dphi, const Vec3& p, FoundContact& out)
+        {
+            std::vector<Vec3> va, vb;
+            auto view = [&](const Body& b, int s, const Mat3& turn, const Vec3& move, std::vector<Vec3>& v)
+            {
+                const Vec3 x = p + turn*(b.x - p) + move;
+                const Mat3 R = turn*b.rotation();
+                v.clear();
+                for (const Vec3& q : w.shapes()[s].core().vertices()) v.push_back(R*q + x);
+                return BodyView{&w.shapes()[s], v.data(), R, x, Quat(R)};
+            };
+            const Mat3 I = Mat3::Identity();
+            const double angle = dphi.norm();
+            const Mat3 turn = angle > 0 ? Mat3(Eigen::AngleAxisd(angle, dphi/angle)) : I;
+            const BodyView A = view(w.bodies()[0], first, I, Vec3::Zero(), va);
+            const BodyView B = view(w.bodies()[1], second, turn, dx, vb);
+            FoundContact found[16];
+            Vec3 axis = Vec3::Zero();
+            const int n = findContacts(A, B, NarrowPhaseSettings{}, axis, found, 16);
+            // The weighted vertex-edge contact
+            for (int k = 0; k < n; ++k)
+            {
+                if (found[k].g.type == FeaturePair::vertexEdge && found[k].g.weight < 1)
+                {
+                    out = found[k];
+                    return true;
+                }
+            }
+            return false;
+        };
+        FoundContact c;
+        ASSERT_TRUE(find(Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), c)) << vertexOnA;
+        EXPECT_GT(c.g.weight, 0.1);
+        EXPECT_LT(c.g.weight, 0.9);
+        const double h = 1e-6;
+        Vec3 gx, gphi;
+        for (int k = 0; k < 3; ++k)
+        {
+            FoundContact plus, minus;
+            const Vec3 e = h*Vec3::Unit(k);
+            ASSERT_TRUE(find(e, Vec3::Zero(), c.g.point, plus));
+            ASSERT_TRUE(find(-e, Vec3::Zero(), c.g.point, minus));
+            gx(k) = (plus.g.weight - minus.g.weight)/(2*h);
+            ASSERT_TRUE(find(Vec3::Zero(), e, c.g.point, plus));
+            ASSERT_TRUE(find(Vec3::Zero(), -e, c.g.point, minus));
+            gphi(k) = (plus.g.weight - minus.g.weight)/(2*h);
+        }
+        std::printf
+        (
+            "vertex on %s: w %.4f, dw/dx_B (%.5g %.5g %.5g) vs (%.5g %.5g %.5g),"
+            " dw/dphi_B (%.5g %.5g %.5g) vs (%.5g %.5g %.5g)\n",
+            vertexOnA ? "A" : "B", c.g.weight,
+            c.g.weightGradientX.x(), c.g.weightGradientX.y(), c.g.weightGradientX.z(),
+            gx.x(), gx.y(), gx.z(),
+            c.g.weightGradient.x(), c.g.weightGradient.y(), c.g.weightGradient.z(),
+            gphi.x(), gphi.y(), gphi.z()
+        );
+        EXPECT_GT(gx.norm(), 1);   // the translational part is there
+        EXPECT_LT((c.g.weightGradientX - gx).norm(), 1e-5*gx.norm());
+        EXPECT_LT((c.g.weightGradient - gphi).norm(), 1e-5*(gphi.norm() + gx.norm()));
     }
 }

@@ -181,7 +181,7 @@ ContactResult ContactLaw::evaluate
     ContactResult r;
     // Force on j: pushed along +n
     const double U = 0.4*elastic*delta;
-    r.forceOnJ = Fn*n + Ft;
+    r.forceOnJ = Fn*n + Ft - U*g.weightGradientX;
     r.normalForce = Fn;
     r.elasticEnergy = w*U + (kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
     r.coupleOnJ = -U*g.weightGradient;

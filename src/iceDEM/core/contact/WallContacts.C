@@ -49,6 +49,7 @@ int findWallContacts
         c.g.sinAngle = 1;
         c.g.weight = 1;
         c.g.weightGradient.setZero();
+        c.g.weightGradientX.setZero();
         c.featureA = featureKey(kVertex, v);
         c.featureB = featureKey(kPlane, 0);
     }
