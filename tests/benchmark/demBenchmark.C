@@ -20,10 +20,13 @@ Description
                   to persistent contact; its end state is cached on disk and
                   every repetition restarts from it;
       floating    the drifting field of -floatN floes (the real workload,
-                  issue 16) at its draft with gravity, buoyancy and empirical
-                  drag at the tutorials' defaults (water 1025 kg/m3 at z = 0,
-                  C_f = 1, C_s = 0.004, subdivision 2, a 0.3 m/s current
-                  along x; -dragIntegration chooses the drag quadrature).
+                  issue 16) at its draft with gravity, buoyancy, empirical
+                  drag and floe damping at the tutorials' defaults (water
+                  1025 kg/m3 at z = 0, C_f = 1, C_s = 0.004, subdivision 2,
+                  a 0.3 m/s current along x; damping 0.1 of critical in
+                  heave, roll and pitch; no wind, as the tutorials but
+                  kullukPack; -wind U adds kullukPack's, U m/s along x;
+                  -dragIntegration chooses the drag quadrature).
     Material: ice, density 920 kg/m3, E = 1 GPa, nu = 0.33; friction 0.2,
     restitution 0.3; DEM step 1 ms.
 
@@ -43,6 +46,11 @@ Usage
       -floatN 2000            floating field size
       -dragIntegration I      floating: drag integration exact | sampled
                               (default: the core's default)
+      -wind U                 floating: wind U m/s along x at the defaults
+                              of doc/caseFiles.md (kullukPack: 15.28;
+                              default 0: no wind, the tutorials' default)
+      -floeDamping on|off     floating: floe damping (default on, as in
+                              both solvers wherever there is water)
       -threads 1,2            thread counts
       -steps S                steps per repetition, every field (default:
                               drifting and floating -duration,
@@ -74,6 +82,8 @@ Usage
 #include "geometry/DilatedShape.H"
 #include "hydro/Buoyancy.H"
 #include "hydro/Drag.H"
+#include "hydro/FloeDamping.H"
+#include "hydro/Wind.H"
 #include "hydro/FlowVelocity.H"
 
 #include <algorithm>
@@ -238,6 +248,8 @@ struct Options
     bool floating = true;
     int floatN = 2000;
     std::string dragIntegration;    //!< empty: the core's default
+    double wind = 0;                //!< floating: wind along x [m/s]; 0: none
+    bool floeDamping = true;        //!< floating: floe damping on
     std::vector<int> sizes{500, 2000, 8000, 20000};
     int compactN = 2000;
     std::vector<int> threads{1, 2};
@@ -261,7 +273,7 @@ struct Options
 {
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
-        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
+        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-floeDamping on|off] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
         " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
@@ -294,6 +306,13 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
         else if (opt == "-floatN") o.floatN = std::atoi(value().c_str());
         else if (opt == "-dragIntegration") o.dragIntegration = value();
+        else if (opt == "-wind") o.wind = std::atof(value().c_str());
+        else if (opt == "-floeDamping")
+        {
+            const std::string v = value();
+            if (v != "on" && v != "off") usage("-floeDamping: on or off");
+            o.floeDamping = v == "on";
+        }
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
         else if (opt == "-duration") o.duration = std::atof(value().c_str());
@@ -535,9 +554,9 @@ std::unique_ptr<World> buildWorld
 
     if (f.floating)
     {
-        // The water of the tutorials (doc/caseFiles.md defaults): buoyancy
-        // and empirical drag in a uniform current. Wind on the floes, once
-        // the core has it, goes here too (a BodyForceModel beside these).
+        // The water of the tutorials (doc/caseFiles.md defaults): buoyancy,
+        // empirical drag in a uniform current, floe damping (on wherever
+        // there is water) and, on request, a uniform wind (kullukPack's)
         const WaterSettings water{kWaterDensity, 0};
         DragSettings drag;
         if (!o.dragIntegration.empty())
@@ -553,6 +572,23 @@ std::unique_ptr<World> buildWorld
                 std::make_shared<UniformCurrent>(Vec3(kCurrent, 0, 0))
             )
         );
+        if (o.floeDamping)
+        {
+            world->addForceModel
+            (
+                std::make_shared<FloeDamping>(water, FloeDampingSettings())
+            );
+        }
+        if (o.wind != 0)
+        {
+            world->addForceModel
+            (
+                std::make_shared<Wind>
+                (
+                    water, WindSettings(), WindHistory(Vec3(o.wind, 0, 0))
+                )
+            );
+        }
     }
 
     if (snap && snap->valid)
@@ -920,8 +956,9 @@ int main(int argc, char* argv[])
             Field f = makeField("floating", o.floatN, 0.7, false, o);
             f.floating = true;
             std::printf("# field=floating floes=%zu box=%.1f m: gravity, buoyancy,"
-                " empirical drag (current %g m/s along x)\n", f.floes.size(),
-                f.xmax - f.xmin, kCurrent);
+                " empirical drag (current %g m/s along x), floe damping %s,"
+                " wind %g m/s along x\n", f.floes.size(),
+                f.xmax - f.xmin, kCurrent, o.floeDamping ? "on" : "off", o.wind);
             identical = benchmarkField(f, o, nullptr, !o.callgrind) && identical;
         }
     }
