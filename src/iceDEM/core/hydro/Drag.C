@@ -5,6 +5,7 @@
 
 #include "Drag.H"
 #include "WaterClip.H"
+#include "WaterFrame.H"
 
 #include <cmath>
 #include <string>
@@ -134,11 +135,15 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     (
         settings_.integration == DragIntegration::exact
      && flow_->uniform(current)
-     && static_cast<int>(P.vertices().size()) <= maxClipVertices
     )
     {
-        exactBodyDrag(P, R, b, omega, current, F, M);
-        return;
+        // The floe's frame, shared with buoyancy and floe damping
+        const WaterFrame& frame = waterFrame(world, i, water_.level);
+        if (frame.valid())
+        {
+            frameDrag(P, frame, b, omega, current, F, M);
+            return;
+        }
     }
 
     // Two-way coupling: the drag per face for the flow (this thread's
@@ -266,24 +271,36 @@ void Drag::exactBodyDrag
     Vec3& M
 ) const
 {
+    // This thread's frame (large: not on the stack)
+    static thread_local WaterFrame frame;
+    computeWaterFrame(P, R, b.x, water_.level, frame);
+    if (!frame.valid())
+    {
+        throw Error
+        (
+            "drag: the exact integration takes polyhedra of at most "
+          + std::to_string(maxClipVertices) + " vertices and faces of at most "
+          + std::to_string(SubmergedFace::maxVertices - 1) + " vertices"
+        );
+    }
+    frameDrag(P, frame, b, omega, current, F, M);
+}
+
+
+void Drag::frameDrag
+(
+    const PolyhedronView& P,
+    const WaterFrame& frame,
+    const Body& b,
+    const Vec3& omega,
+    const Vec3& current,
+    Vec3& F,
+    Vec3& M
+) const
+{
     F.setZero();
     M.setZero();
-
-    // World-frame vertices relative to the centroid, their heights above
-    // the water
-    const auto V = P.vertices();
-    const int nv = static_cast<int>(V.size());
-    Vec3 r[maxClipVertices];
-    double h[maxClipVertices];
-    const double h0 = b.x.z() - water_.level;
-    bool wet = false;
-    for (int k = 0; k < nv; ++k)
-    {
-        r[k] = R*V[k];
-        h[k] = r[k].z() + h0;
-        wet = wet || h[k] < 0;
-    }
-    if (!wet)
+    if (!frame.wet())
     {
         return;
     }
@@ -295,54 +312,17 @@ void Drag::exactBodyDrag
     constexpr int cap = SubmergedFace::maxVertices + 1;
     Vec3 p[cap];
     double s[cap];
-    Vec3 q[cap];
-    double sq[cap];
     Vec3 lead[cap + 1];
     double sl[cap + 1];
 
-    const int nf = static_cast<int>(P.faces().size());
-    for (int f = 0; f < nf; ++f)
+    // The wet polygons (vertices relative to the centroid)
+    for (int wf = 0; wf < frame.nWet; ++wf)
     {
-        const PolyhedronView::Face face = P.faces()[f];
-        const int n = face.count;
-        if (n + 1 > SubmergedFace::maxVertices)
-        {
-            throw Error
-            (
-                "drag: face " + std::to_string(f) + " has "
-              + std::to_string(n) + " vertices, more than the capacity "
-              + std::to_string(SubmergedFace::maxVertices - 1)
-              + " of SubmergedFace::maxVertices - 1"
-            );
-        }
-        int nBelow = 0;
-        for (int k = 0; k < n; ++k)
-        {
-            const int v = P.faceVertex(f, k);
-            q[k] = r[v];
-            s[k] = h[v];
-            nBelow += s[k] < 0;
-        }
-        if (nBelow == 0)
-        {
-            continue;
-        }
-        // A face entirely below is its own clipped polygon
-        int m = n;
-        if (nBelow < n)
-        {
-            for (int k = 0; k < n; ++k)
-            {
-                p[k] = q[k];
-            }
-            m = clipNegative(p, s, n, q, sq);
-            if (m == 0)
-            {
-                continue;
-            }
-        }
+        const PolyhedronView::Face face = P.faces()[frame.wetFace[wf]];
+        const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
+        const int m = frame.wetBegin[wf + 1] - frame.wetBegin[wf];
 
-        const Vec3 nrm = R*face.normal;
+        const Vec3 nrm = frame.R*face.normal;
         const bool skin = std::abs(nrm.z()) >= settings_.bottomCosine;
         const double coeff =
             halfRho
