@@ -20,10 +20,13 @@ Description
                   to persistent contact; its end state is cached on disk and
                   every repetition restarts from it;
       floating    the drifting field of -floatN floes (the real workload,
-                  issue 16) at its draft with gravity, buoyancy and empirical
-                  drag at the tutorials' defaults (water 1025 kg/m3 at z = 0,
-                  C_f = 1, C_s = 0.004, subdivision 2, a 0.3 m/s current
-                  along x; -dragIntegration chooses the drag quadrature).
+                  issue 16) at its draft with gravity, buoyancy, empirical
+                  drag and floe damping at the tutorials' defaults (water
+                  1025 kg/m3 at z = 0, C_f = 1, C_s = 0.004, subdivision 2,
+                  a 0.3 m/s current along x; damping 0.1 of critical in
+                  heave, roll and pitch; no wind, as the tutorials but
+                  kullukPack; -wind U adds kullukPack's, U m/s along x;
+                  -dragIntegration chooses the drag quadrature).
     Material: ice, density 920 kg/m3, E = 1 GPa, nu = 0.33; friction 0.2,
     restitution 0.3; DEM step 1 ms.
 
@@ -43,6 +46,14 @@ Usage
       -floatN 2000            floating field size
       -dragIntegration I      floating: drag integration exact | sampled
                               (default: the core's default)
+      -wind U                 floating: wind U m/s along x at the defaults
+                              of doc/caseFiles.md (kullukPack: 15.28;
+                              default 0: no wind, the tutorials' default)
+      -floeDamping on|off     floating: floe damping (default on, as in
+                              both solvers wherever there is water)
+      -hydroAccuracy          floating: instead of timing, each floe's drag
+                              and buoyancy by every shortcut against its
+                              reference (after -warmup T), rms and max
       -threads 1,2            thread counts
       -steps S                steps per repetition, every field (default:
                               drifting and floating -duration,
@@ -74,6 +85,9 @@ Usage
 #include "geometry/DilatedShape.H"
 #include "hydro/Buoyancy.H"
 #include "hydro/Drag.H"
+#include "hydro/FloeDamping.H"
+#include "hydro/WaterFrame.H"
+#include "hydro/Wind.H"
 #include "hydro/FlowVelocity.H"
 
 #include <algorithm>
@@ -238,6 +252,9 @@ struct Options
     bool floating = true;
     int floatN = 2000;
     std::string dragIntegration;    //!< empty: the core's default
+    double wind = 0;                //!< floating: wind along x [m/s]; 0: none
+    bool floeDamping = true;        //!< floating: floe damping on
+    bool hydroAccuracy = false;     //!< floating: accuracy of the shortcuts
     std::vector<int> sizes{500, 2000, 8000, 20000};
     int compactN = 2000;
     std::vector<int> threads{1, 2};
@@ -261,7 +278,7 @@ struct Options
 {
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
-        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
+        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-floeDamping on|off] [-hydroAccuracy] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
         " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
@@ -294,6 +311,13 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
         else if (opt == "-floatN") o.floatN = std::atoi(value().c_str());
         else if (opt == "-dragIntegration") o.dragIntegration = value();
+        else if (opt == "-wind") o.wind = std::atof(value().c_str());
+        else if (opt == "-floeDamping")
+        {
+            const std::string v = value();
+            if (v != "on" && v != "off") usage("-floeDamping: on or off");
+            o.floeDamping = v == "on";
+        }
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
         else if (opt == "-duration") o.duration = std::atof(value().c_str());
@@ -309,6 +333,7 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-seed") o.seed = std::strtoull(value().c_str(), nullptr, 10);
         else if (opt == "-cache") o.cache = value();
         else if (opt == "-callgrind") o.callgrind = true;
+        else if (opt == "-hydroAccuracy") o.hydroAccuracy = true;
         else usage(("unknown option " + opt).c_str());
     }
     if (o.threads.empty()) usage("-threads: empty list");
@@ -535,9 +560,9 @@ std::unique_ptr<World> buildWorld
 
     if (f.floating)
     {
-        // The water of the tutorials (doc/caseFiles.md defaults): buoyancy
-        // and empirical drag in a uniform current. Wind on the floes, once
-        // the core has it, goes here too (a BodyForceModel beside these).
+        // The water of the tutorials (doc/caseFiles.md defaults): buoyancy,
+        // empirical drag in a uniform current, floe damping (on wherever
+        // there is water) and, on request, a uniform wind (kullukPack's)
         const WaterSettings water{kWaterDensity, 0};
         DragSettings drag;
         if (!o.dragIntegration.empty())
@@ -553,6 +578,23 @@ std::unique_ptr<World> buildWorld
                 std::make_shared<UniformCurrent>(Vec3(kCurrent, 0, 0))
             )
         );
+        if (o.floeDamping)
+        {
+            world->addForceModel
+            (
+                std::make_shared<FloeDamping>(water, FloeDampingSettings())
+            );
+        }
+        if (o.wind != 0)
+        {
+            world->addForceModel
+            (
+                std::make_shared<Wind>
+                (
+                    water, WindSettings(), WindHistory(Vec3(o.wind, 0, 0))
+                )
+            );
+        }
     }
 
     if (snap && snap->valid)
@@ -756,6 +798,124 @@ int stepsFor(int n, bool compacting, const Options& o)
 
 //- Runs one field at every thread count; returns false if the final
 //  states differ between thread counts
+// * * * * * * * * * * * *  Accuracy of the hydro shortcuts * * * * * * * * //
+
+//- Relative error of (F, M) against (Fr, Mr), the moment over the size L
+double relError
+(
+    const Vec3& F, const Vec3& M, const Vec3& Fr, const Vec3& Mr, double L
+)
+{
+    const double scale = Fr.norm() + Mr.norm()/L;
+    return scale > 0 ? ((F - Fr).norm() + (M - Mr).norm()/L)/scale : 0;
+}
+
+//- rms and largest of a set of errors
+struct ErrorStats
+{
+    double sq = 0, max = 0;
+    int n = 0;
+    void add(double e) { sq += e*e; max = std::max(max, e); ++n; }
+    void print(const char* what) const
+    {
+        std::printf("accuracy %-58s rms %.3g max %.3g (%d floes)\n", what,
+            n ? std::sqrt(sq/n) : 0.0, max, n);
+    }
+};
+
+//- -hydroAccuracy: the floating field after the -warmup time (default 0),
+//  every floe's buoyancy and drag by each shortcut against its reference
+void hydroAccuracy(const Field& f, const Options& o)
+{
+    std::unique_ptr<World> world = buildWorld(f, o, nullptr);
+    world->initialise();
+    while (world->time() < o.warmup - 0.5e-3) world->step();
+    const std::vector<Body>& bodies = world->bodies();
+    const WaterSettings water{kWaterDensity, 0};
+    const auto current = std::make_shared<UniformCurrent>(Vec3(kCurrent, 0, 0));
+    auto drag = [&](DragIntegration integration, int sub, double Cf, double Cs)
+    {
+        DragSettings s;
+        s.integration = integration;
+        s.subdivision = sub;
+        s.formCoefficient = Cf;
+        s.skinCoefficient = Cs;
+        return Drag(water, s, current);
+    };
+    const DragSettings defaults;
+    const double Cf = defaults.formCoefficient, Cs = defaults.skinCoefficient;
+    const Drag exactForm = drag(DragIntegration::exact, 0, Cf, 0);
+    const Drag exactSkin = drag(DragIntegration::exact, 0, 0, Cs);
+    ErrorStats form2, skin2, skinRule, skinClosed, skinForced, skinSwitch, volume;
+    PolyhedronBuffer buf;
+    for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
+    {
+        const double L = world->shapeOf(i).boundingRadius();
+        // Sampled sums and their Richardson limit (subdivisions 3 and 4)
+        Vec3 F[5], M[5], S[5], SM[5];
+        for (int sub = 2; sub <= 4; ++sub)
+        {
+            drag(DragIntegration::sampled, sub, Cf, 0).bodyDrag(*world, i, F[sub], M[sub]);
+            drag(DragIntegration::sampled, sub, 0, Cs).bodyDrag(*world, i, S[sub], SM[sub]);
+        }
+        const Vec3 Sr = (4*S[4] - S[3])/3, SMr = (4*SM[4] - SM[3])/3;
+        Vec3 Fe, Me, Se, SMe;
+        exactForm.bodyDrag(*world, i, Fe, Me);
+        exactSkin.bodyDrag(*world, i, Se, SMe);
+        form2.add(relError(F[2], M[2], Fe, Me, L));
+        skin2.add(relError(S[2], SM[2], Sr, SMr, L));
+        skinClosed.add(relError(Se, SMe, Sr, SMr, L));
+
+        // The skin of the wet bottom facets by the 6-point rule (the last
+        // round's), the closed form everywhere and skinIntegral's choice
+        // between them (the drag's), against the Richardson limit
+        const WaterFrame& frame = waterFrame(*world, i, water.level);
+        const PolyhedronView P = world->shapeOf(i).outer(buf);
+        const Body& b = bodies[i];
+        const Vec3 omega = b.omega();
+        const Vec3 w = b.v - Vec3(kCurrent, 0, 0);
+        Vec3 Ic = Vec3::Zero(), Irc = Vec3::Zero(), Iq = Vec3::Zero(),
+            Irq = Vec3::Zero(), Is = Vec3::Zero(), Irs = Vec3::Zero();
+        for (int k = 0; k < frame.nWet; ++k)
+        {
+            const Vec3 n = frame.R*P.faces()[frame.wetFace[k]].normal;
+            if (std::abs(n.z()) < defaults.bottomCosine) continue;
+            const Vec3* q = frame.wetVertex + frame.wetBegin[k];
+            const int m = frame.wetBegin[k + 1] - frame.wetBegin[k];
+            Vec3 I, Ir;
+            if (skinIntegralClosedForm(q, m, n, w, omega, I, Ir)) { Ic += I; Irc += Ir; }
+            if (skinIntegralConical(q, m, n, w, omega, I, Ir)) { Iq += I; Irq += Ir; }
+            if (skinIntegral(q, m, n, w, omega, I, Ir)) { Is += I; Irs += Ir; }
+        }
+        // As forces: F = -1/2 rho C_s I
+        const double c = -0.5*kWaterDensity*Cs;
+        skinRule.add(relError(c*Iq, c*Irq, Sr, SMr, L));
+        skinForced.add(relError(c*Ic, c*Irc, Sr, SMr, L));
+        skinSwitch.add(relError(c*Is, c*Irs, Sr, SMr, L));
+
+        // Buoyancy: the frame's (truncated prism) against the tetrahedra
+        const SubmergedVolume& sv = frameVolume(P, frame);
+        const SubmergedVolume ref =
+            submergedVolumeByTetrahedra(P, frame.R, b.x, water.level);
+        volume.add
+        (
+            std::abs(sv.volume - ref.volume)/ref.volume
+          + (sv.centroid - ref.centroid).norm()/L
+        );
+    }
+    std::printf("# hydro accuracy, floating field at t = %g s, %zu floes"
+        " (relative error of force + moment/R, R the bounding radius)\n",
+        world->time(), bodies.size());
+    form2.print("form drag, sampled subdivision 2 vs closed form");
+    skin2.print("skin drag, sampled subdivision 2 vs Richardson(3, 4)");
+    skinClosed.print("skin drag, exact integration (bodyDrag) vs Richardson");
+    skinRule.print("skin drag, 6-point rule everywhere vs Richardson(3, 4)");
+    skinForced.print("skin drag, closed form everywhere vs Richardson(3, 4)");
+    skinSwitch.print("skin drag, skinIntegral (the drag's choice) vs Richardson");
+    volume.print("buoyancy: volume + centre/R, frame vs tetrahedra");
+}
+
+
 bool benchmarkField(const Field& f, const Options& o, const Snapshot* snap, bool memory)
 {
     const int n = static_cast<int>(f.floes.size());
@@ -920,9 +1080,17 @@ int main(int argc, char* argv[])
             Field f = makeField("floating", o.floatN, 0.7, false, o);
             f.floating = true;
             std::printf("# field=floating floes=%zu box=%.1f m: gravity, buoyancy,"
-                " empirical drag (current %g m/s along x)\n", f.floes.size(),
-                f.xmax - f.xmin, kCurrent);
-            identical = benchmarkField(f, o, nullptr, !o.callgrind) && identical;
+                " empirical drag (current %g m/s along x), floe damping %s,"
+                " wind %g m/s along x\n", f.floes.size(),
+                f.xmax - f.xmin, kCurrent, o.floeDamping ? "on" : "off", o.wind);
+            if (o.hydroAccuracy)
+            {
+                hydroAccuracy(f, o);
+            }
+            else
+            {
+                identical = benchmarkField(f, o, nullptr, !o.callgrind) && identical;
+            }
         }
     }
     catch (const Error& e)

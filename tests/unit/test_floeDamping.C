@@ -18,6 +18,7 @@ Description
 #include "World.H"
 #include "hydro/Buoyancy.H"
 #include "hydro/FloeDamping.H"
+#include "hydro/WaterFrame.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -25,6 +26,7 @@ Description
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <random>
 #include <vector>
 
 using namespace iceDEM;
@@ -146,6 +148,55 @@ TEST(FloeDamping, waterplaneOfABox)
         EXPECT_NEAR(wp.Iyy, Lx*B*B*B/12, 1e-12);
         EXPECT_NEAR(wp.centroid.head<2>().norm(), 0, 1e-12);
     }
+}
+
+
+TEST(FloeDamping, waterFrameAgreesWithThePerFacePaths)
+{
+    // The shared frame (hydro/WaterFrame.H) against the per-face clipping:
+    // the submerged volume bit for bit (same arithmetic), the waterplane
+    // to round-off (vertices relative to the centroid, not world points
+    // minus the centroid), on random poses: level, heeled, overwashed, dry
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> U(-1, 1);
+    DampWorld dw(1e-3);
+    dw.addBox(3, 2, 1, -0.5, Quat::Identity());
+    Body& b = dw.world->bodies()[0];
+    PolyhedronBuffer buf;
+    int cut = 0;
+    for (int trial = 0; trial < 400; ++trial)
+    {
+        const double tilt = trial % 2 ? 0.2 : M_PI;
+        b.q = Quat(Eigen::AngleAxisd
+        (
+            tilt*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+        ));
+        b.x = Vec3(20*U(gen), 20*U(gen), 1.5*U(gen));
+        const PolyhedronView P = dw.world->shapeOf(0).outer(buf);
+        const Mat3 R = b.rotation();
+        const WaterFrame& frame = waterFrame(*dw.world, 0, 0.1);
+        ASSERT_TRUE(frame.valid());
+        const SubmergedVolume& sv = frameVolume(P, frame);
+        const SubmergedVolume ref = submergedVolume(P, R, b.x, 0.1);
+        EXPECT_EQ(sv.volume, ref.volume);
+        EXPECT_EQ(sv.centroid, ref.centroid);
+        const Waterplane wf = waterplane(frame);
+        const Waterplane wr = waterplane(P, R, b.x, 0.1);
+        EXPECT_NEAR(wf.area, wr.area, 1e-12*6);
+        // (an overwashed box has a waterplane of round-off area, whose
+        // centroid is round-off over round-off in both)
+        if (wr.area > 1e-6)
+        {
+            EXPECT_NEAR((wf.centroid - wr.centroid).norm(), 0, 1e-12*20);
+        }
+        EXPECT_NEAR(wf.Ixx, wr.Ixx, 1e-11);
+        EXPECT_NEAR(wf.Iyy, wr.Iyy, 1e-11);
+        cut += wr.area > 0;
+        // Asked again: the same frame (cached), not recomputed
+        EXPECT_EQ(&waterFrame(*dw.world, 0, 0.1), &frame);
+        EXPECT_TRUE(frame.hasVolume);
+    }
+    EXPECT_GT(cut, 100);
 }
 
 

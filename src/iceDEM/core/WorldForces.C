@@ -437,9 +437,15 @@ void World::sumBodyForces(double dtKick)
             modelForce_[b].setZero();
             modelTorque_[b].setZero();
         }
-        for (const auto& m : forceModels_)
+        // Body by body, then model by model: the hydrodynamic models of a
+        // floe share its transformed and clipped polyhedron
+        // (hydro/WaterFrame.H); a body's sum is in model order, as before
+        for (int b = begin; b < end; ++b)
         {
-            m->addForces(*this, begin, end, modelForce_.data(), modelTorque_.data());
+            for (const auto& m : forceModels_)
+            {
+                m->addForces(*this, b, b + 1, modelForce_.data(), modelTorque_.data());
+            }
         }
     }
 

@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "Buoyancy.H"
+#include "WaterFrame.H"
 #include "WaterClip.H"
 
 #include <cmath>
@@ -69,12 +70,11 @@ void Buoyancy::addForces
         const Body& b = bodies[i];
         // A structure's hydrostatics belong to its own motion (sixDoF)
         if (!b.isFree()) continue;
-        const SubmergedVolume sub = submergedVolume
+        // The floe's frame, shared with drag and floe damping
+        const SubmergedVolume& sub = frameVolume
         (
             world.shapeOf(i).outer(outerBuffer),
-            b.rotation(),
-            b.x,
-            water_.level
+            waterFrame(world, i, water_.level)
         );
         if (sub.volume > 0)
         {

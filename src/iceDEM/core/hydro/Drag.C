@@ -5,6 +5,7 @@
 
 #include "Drag.H"
 #include "WaterClip.H"
+#include "WaterFrame.H"
 
 #include <cmath>
 #include <string>
@@ -32,6 +33,245 @@ constexpr double coneWS[3] =
     {0.27777777777777778, 0.44444444444444444, 0.27777777777777778};
 
 } // anonymous namespace
+
+
+namespace
+{
+
+//- Area and centroid of the planar polygon q[0..m) (normal n); false for
+//  no positive area
+bool polygonCentroid
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    double& area,
+    Vec3& centroid
+)
+{
+    centroid.setZero();
+    area = 0;
+    for (int k = 1; k + 1 < m; ++k)
+    {
+        const double a = 0.5*((q[k] - q[0]).cross(q[k + 1] - q[0])).dot(n);
+        area += a;
+        centroid += (a/3.0)*(q[0] + q[k] + q[k + 1]);
+    }
+    if (!(area > 0)) return false;
+    centroid /= area;
+    return true;
+}
+
+//- The tangential part of u on a plane of unit normal n
+inline Vec3 tangential(const Vec3& u, const Vec3& n)
+{
+    return u - u.dot(n)*n;
+}
+
+} // anonymous namespace
+
+
+bool skinIntegralConical
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& I,
+    Vec3& Ir
+)
+{
+    I.setZero();
+    Ir.setZero();
+    double area;
+    Vec3 centroid;
+    if (m < 3 || m > SubmergedFace::maxVertices + 1) return false;
+    if (!polygonCentroid(q, m, n, area, centroid)) return false;
+
+    // u_t is linear: its value at the centroid and its change towards each
+    // vertex (e_k = q_k - centroid)
+    Vec3 e[SubmergedFace::maxVertices + 1];
+    Vec3 du[SubmergedFace::maxVertices + 1];
+    const Vec3 utc = tangential(w + omega.cross(centroid), n);
+    for (int k = 0; k < m; ++k)
+    {
+        e[k] = q[k] - centroid;
+        du[k] = tangential(omega.cross(e[k]), n);
+    }
+    Vec3 M = Vec3::Zero();
+    for (int k = 0; k < m; ++k)
+    {
+        const int k1 = k + 1 == m ? 0 : k + 1;
+        const Vec3& eb = e[k];
+        const Vec3& ec = e[k1];
+        const double A2 = (eb.cross(ec)).dot(n);
+        // Sum of the integrand and of its moments about the centroid, as
+        // eb x Gb + ec x Gc
+        Vec3 It = Vec3::Zero(), Gb = Vec3::Zero(), Gc = Vec3::Zero();
+        for (int i = 0; i < 2; ++i)
+        {
+            for (int j = 0; j < 3; ++j)
+            {
+                const double tb = coneT[i]*(1 - coneS[j]);
+                const double tc = coneT[i]*coneS[j];
+                const Vec3 ut = utc + tb*du[k] + tc*du[k1];
+                const double wgt = A2*coneWT[i]*coneWS[j];
+                const Vec3 dI = (wgt*ut.norm())*ut;
+                It += dI;
+                Gb += tb*dI;
+                Gc += tc*dI;
+            }
+        }
+        I += It;
+        M += eb.cross(Gb) + ec.cross(Gc);
+    }
+    Ir = M + centroid.cross(I);
+    return true;
+}
+
+
+namespace
+{
+
+//- skinIntegralClosedForm about the polygon's centroid (given)
+bool skinClosedForm
+(
+    const Vec3* q,
+    int m,
+    const Vec3& centroid,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& I,
+    Vec3& Ir
+)
+{
+    I.setZero();
+    Ir.setZero();
+    // On the plane, u_t = U + Omega n x e (e from the centroid): a rotation
+    // by Omega = omega.n about the point e0 = n x U/Omega, so with
+    // d = e - e0, |u_t| u_t = Omega |Omega| |d| n x d and
+    //   int |u_t| u_t dA = Omega |Omega| n x G,   G = int |d| d dA,
+    //   int e x |u_t| u_t dA = Omega |Omega| (e0 x (n x G) + n H),
+    //   H = int |d|^3 dA.
+    // By the divergence theorem (|d| d = grad |d|^3/3, div(d |d|^3) =
+    // 5 |d|^3) both are sums over the edges of J = int_edge |d|^3 ds:
+    //   G = 1/3 sum J nu,   H = 1/5 sum J p,
+    // nu the edge's outward normal, p = d.nu its distance from e0, and with
+    // t along the edge, r = |d| = sqrt(t^2 + p^2):
+    //   J = [t r^3/4 + 3 p^2 t r/8 + 3 p^4/8 asinh(t/|p|)] between its ends.
+    const double Om = omega.dot(n);
+    if (Om == 0) return false;
+    const Vec3 U = tangential(w + omega.cross(centroid), n);
+    const Vec3 e0 = n.cross(U)/Om;
+
+    Vec3 d[SubmergedFace::maxVertices + 1];
+    double r[SubmergedFace::maxVertices + 1];
+    for (int k = 0; k < m; ++k)
+    {
+        d[k] = q[k] - centroid - e0;
+        r[k] = d[k].norm();
+    }
+    Vec3 G = Vec3::Zero();
+    double H = 0;
+    for (int k = 0; k < m; ++k)
+    {
+        const int k1 = k + 1 == m ? 0 : k + 1;
+        const Vec3 E = d[k1] - d[k];
+        const double L = E.norm();
+        if (!(L > 0)) continue;
+        const Vec3 tau = E/L;
+        const Vec3 nu = tau.cross(n);
+        const double p = d[k].dot(nu);
+        const double p2 = p*p;
+        const double t1 = d[k].dot(tau), t2 = d[k1].dot(tau);
+        const double r1 = r[k], r2 = r[k1];
+        double J =
+            0.25*(t2*r2*r2*r2 - t1*r1*r1*r1)
+          + 0.375*p2*(t2*r2 - t1*r1);
+        if (p2 > 0)
+        {
+            // asinh(t2/|p|) - asinh(t1/|p|) = log(f(t2)/f(t1)) with
+            // f = t + r, written p^2/(r - t) for t < 0 (no cancellation)
+            const double f1 = t1 >= 0 ? t1 + r1 : p2/(r1 - t1);
+            const double f2 = t2 >= 0 ? t2 + r2 : p2/(r2 - t2);
+            J += 0.375*p2*p2*std::log(f2/f1);
+        }
+        G += (J/3.0)*nu;
+        H += (J/5.0)*p;
+    }
+    const double s = Om*std::abs(Om);
+    I = s*n.cross(G);
+    Ir = centroid.cross(I) + s*(e0.cross(n.cross(G)) + H*n);
+    return true;
+}
+
+} // anonymous namespace
+
+
+bool skinIntegralClosedForm
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& I,
+    Vec3& Ir
+)
+{
+    I.setZero();
+    Ir.setZero();
+    double area;
+    Vec3 centroid;
+    if (m < 3 || m > SubmergedFace::maxVertices + 1) return false;
+    if (!polygonCentroid(q, m, n, area, centroid)) return false;
+    return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
+}
+
+
+bool skinIntegral
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& I,
+    Vec3& Ir
+)
+{
+    // The closed form loses (D/a)^2 of precision in the moment when the
+    // centre of rotation is D far from a polygon of size a; there the field
+    // is nearly uniform and the conical rule errs by about (a/D)^4
+    double area;
+    Vec3 centroid;
+    if
+    (
+        m < 3 || m > SubmergedFace::maxVertices + 1
+     || !polygonCentroid(q, m, n, area, centroid)
+    )
+    {
+        I.setZero();
+        Ir.setZero();
+        return false;
+    }
+    double a2 = 0;
+    for (int k = 0; k < m; ++k)
+    {
+        a2 = std::max(a2, (q[k] - centroid).squaredNorm());
+    }
+    const double Om = omega.dot(n);
+    const Vec3 U = tangential(w + omega.cross(centroid), n);
+    const double D2 = U.squaredNorm();
+    const double k2 = skinUniformRatio*skinUniformRatio;
+    if (Om*Om*a2*k2 > D2)
+    {
+        return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
+    }
+    return skinIntegralConical(q, m, n, w, omega, I, Ir);
+}
 
 
 DragIntegration dragIntegrationFromName(const std::string& name)
@@ -134,11 +374,15 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     (
         settings_.integration == DragIntegration::exact
      && flow_->uniform(current)
-     && static_cast<int>(P.vertices().size()) <= maxClipVertices
     )
     {
-        exactBodyDrag(P, R, b, omega, current, F, M);
-        return;
+        // The floe's frame, shared with buoyancy and floe damping
+        const WaterFrame& frame = waterFrame(world, i, water_.level);
+        if (frame.valid())
+        {
+            frameDrag(P, frame, b, omega, current, F, M);
+            return;
+        }
     }
 
     // Two-way coupling: the drag per face for the flow (this thread's
@@ -266,24 +510,36 @@ void Drag::exactBodyDrag
     Vec3& M
 ) const
 {
+    // This thread's frame (large: not on the stack)
+    static thread_local WaterFrame frame;
+    computeWaterFrame(P, R, b.x, water_.level, frame);
+    if (!frame.valid())
+    {
+        throw Error
+        (
+            "drag: the exact integration takes polyhedra of at most "
+          + std::to_string(maxClipVertices) + " vertices and faces of at most "
+          + std::to_string(SubmergedFace::maxVertices - 1) + " vertices"
+        );
+    }
+    frameDrag(P, frame, b, omega, current, F, M);
+}
+
+
+void Drag::frameDrag
+(
+    const PolyhedronView& P,
+    const WaterFrame& frame,
+    const Body& b,
+    const Vec3& omega,
+    const Vec3& current,
+    Vec3& F,
+    Vec3& M
+) const
+{
     F.setZero();
     M.setZero();
-
-    // World-frame vertices relative to the centroid, their heights above
-    // the water
-    const auto V = P.vertices();
-    const int nv = static_cast<int>(V.size());
-    Vec3 r[maxClipVertices];
-    double h[maxClipVertices];
-    const double h0 = b.x.z() - water_.level;
-    bool wet = false;
-    for (int k = 0; k < nv; ++k)
-    {
-        r[k] = R*V[k];
-        h[k] = r[k].z() + h0;
-        wet = wet || h[k] < 0;
-    }
-    if (!wet)
+    if (!frame.wet())
     {
         return;
     }
@@ -293,56 +549,18 @@ void Drag::exactBodyDrag
     const double halfRho = 0.5*water_.density;
 
     constexpr int cap = SubmergedFace::maxVertices + 1;
-    Vec3 p[cap];
     double s[cap];
-    Vec3 q[cap];
-    double sq[cap];
     Vec3 lead[cap + 1];
     double sl[cap + 1];
 
-    const int nf = static_cast<int>(P.faces().size());
-    for (int f = 0; f < nf; ++f)
+    // The wet polygons (vertices relative to the centroid)
+    for (int wf = 0; wf < frame.nWet; ++wf)
     {
-        const PolyhedronView::Face face = P.faces()[f];
-        const int n = face.count;
-        if (n + 1 > SubmergedFace::maxVertices)
-        {
-            throw Error
-            (
-                "drag: face " + std::to_string(f) + " has "
-              + std::to_string(n) + " vertices, more than the capacity "
-              + std::to_string(SubmergedFace::maxVertices - 1)
-              + " of SubmergedFace::maxVertices - 1"
-            );
-        }
-        int nBelow = 0;
-        for (int k = 0; k < n; ++k)
-        {
-            const int v = P.faceVertex(f, k);
-            q[k] = r[v];
-            s[k] = h[v];
-            nBelow += s[k] < 0;
-        }
-        if (nBelow == 0)
-        {
-            continue;
-        }
-        // A face entirely below is its own clipped polygon
-        int m = n;
-        if (nBelow < n)
-        {
-            for (int k = 0; k < n; ++k)
-            {
-                p[k] = q[k];
-            }
-            m = clipNegative(p, s, n, q, sq);
-            if (m == 0)
-            {
-                continue;
-            }
-        }
+        const PolyhedronView::Face face = P.faces()[frame.wetFace[wf]];
+        const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
+        const int m = frame.wetBegin[wf + 1] - frame.wetBegin[wf];
 
-        const Vec3 nrm = R*face.normal;
+        const Vec3 nrm = frame.R*face.normal;
         const bool skin = std::abs(nrm.z()) >= settings_.bottomCosine;
         const double coeff =
             halfRho
@@ -372,27 +590,23 @@ void Drag::exactBodyDrag
             }
             // Leading everywhere: the wet polygon itself
             int ml = m;
+            const Vec3* lp = q;
+            const double* ls = s;
             if (nLead < m)
             {
                 ml = clipNegative(q, s, m, lead, sl);
-            }
-            else
-            {
-                for (int k = 0; k < m; ++k)
-                {
-                    lead[k] = q[k];
-                    sl[k] = s[k];
-                }
+                lp = lead;
+                ls = sl;
             }
             double I = 0;
             Vec3 Ir = Vec3::Zero();
             for (int k = 1; k + 1 < ml; ++k)
             {
-                const Vec3& a = lead[0];
-                const Vec3& bb = lead[k];
-                const Vec3& c = lead[k + 1];
+                const Vec3& a = lp[0];
+                const Vec3& bb = lp[k];
+                const Vec3& c = lp[k + 1];
                 const double A = 0.5*((bb - a).cross(c - a)).dot(nrm);
-                const double fa = -sl[0], fb = -sl[k], fc = -sl[k + 1];
+                const double fa = -ls[0], fb = -ls[k], fc = -ls[k + 1];
                 const double S = fa + fb + fc;
                 const double Q =
                     fa*fa + fb*fb + fc*fc + fa*fb + fb*fc + fc*fa;
@@ -407,65 +621,14 @@ void Drag::exactBodyDrag
         }
         else
         {
-            // Skin drag |u_t| u_t: not a polynomial; the conical rule (6
-            // points) on the fan triangles from the polygon's centroid (as
-            // the sampled path fans)
-            Vec3 centroid = Vec3::Zero();
-            double area = 0;
-            for (int k = 1; k + 1 < m; ++k)
+            // Skin drag |u_t| u_t: not a polynomial, but in closed form
+            // for a rigid-body field (skinIntegral)
+            Vec3 I, Ir;
+            if (skinIntegral(q, m, nrm, w, omega, I, Ir))
             {
-                const double a =
-                    0.5*((q[k] - q[0]).cross(q[k + 1] - q[0])).dot(nrm);
-                area += a;
-                centroid += (a/3.0)*(q[0] + q[k] + q[k + 1]);
+                F -= coeff*I;
+                M -= coeff*Ir;
             }
-            if (!(area > 0))
-            {
-                continue;
-            }
-            centroid /= area;
-
-            // u_t is linear: its value at the centroid and its change
-            // towards each vertex (e_k = q_k - centroid)
-            const auto tangential = [&](const Vec3& u)
-            {
-                return Vec3(u - u.dot(nrm)*nrm);
-            };
-            const Vec3 utc = tangential(w + omega.cross(centroid));
-            for (int k = 0; k < m; ++k)
-            {
-                lead[k] = q[k] - centroid;
-                p[k] = tangential(omega.cross(lead[k]));
-            }
-            Vec3 Fs = Vec3::Zero();
-            for (int k = 0; k < m; ++k)
-            {
-                const int k1 = k + 1 == m ? 0 : k + 1;
-                const Vec3& eb = lead[k];
-                const Vec3& ec = lead[k1];
-                const double A2 = (eb.cross(ec)).dot(nrm);
-                // Sum of dF and of its moments about the centroid, as
-                // eb x Gb + ec x Gc
-                Vec3 Ft = Vec3::Zero(), Gb = Vec3::Zero(), Gc = Vec3::Zero();
-                for (int i = 0; i < 2; ++i)
-                {
-                    for (int j = 0; j < 3; ++j)
-                    {
-                        const double tb = coneT[i]*(1 - coneS[j]);
-                        const double tc = coneT[i]*coneS[j];
-                        const Vec3 ut = utc + tb*p[k] + tc*p[k1];
-                        const double wgt = coeff*A2*coneWT[i]*coneWS[j];
-                        const Vec3 dF = (-wgt*ut.norm())*ut;
-                        Ft += dF;
-                        Gb += tb*dF;
-                        Gc += tc*dF;
-                    }
-                }
-                Fs += Ft;
-                M += eb.cross(Gb) + ec.cross(Gc);
-            }
-            F += Fs;
-            M += centroid.cross(Fs);
         }
     }
 }

@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "FloeDamping.H"
+#include "WaterFrame.H"
 #include "WaterClip.H"
 
 #include <cmath>
@@ -83,6 +84,44 @@ Waterplane waterplane
 }
 
 
+Waterplane waterplane(const WaterFrame& frame)
+{
+    // As above, from the frame's wet polygons (already relative to x)
+    double A = 0, Sx = 0, Sy = 0, Qxx = 0, Qyy = 0;
+    for (int wf = 0; wf < frame.nWet; ++wf)
+    {
+        const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
+        const int m = frame.wetBegin[wf + 1] - frame.wetBegin[wf];
+        const Vec3& q0 = q[0];
+        for (int k = 1; k + 1 < m; ++k)
+        {
+            const Vec3& q1 = q[k];
+            const Vec3& q2 = q[k + 1];
+            const double ap = 0.5*((q1 - q0).cross(q2 - q0)).z();
+            if (ap == 0) continue;
+            const Vec3 m01 = 0.5*(q0 + q1);
+            const Vec3 m12 = 0.5*(q1 + q2);
+            const Vec3 m20 = 0.5*(q2 + q0);
+            A -= ap;
+            Sx -= ap*(q0.x() + q1.x() + q2.x())/3;
+            Sy -= ap*(q0.y() + q1.y() + q2.y())/3;
+            Qxx -= ap*(m01.x()*m01.x() + m12.x()*m12.x() + m20.x()*m20.x())/3;
+            Qyy -= ap*(m01.y()*m01.y() + m12.y()*m12.y() + m20.y()*m20.y())/3;
+        }
+    }
+
+    Waterplane w;
+    if (!(A > 0)) return w;
+    w.area = A;
+    const double xF = Sx/A;
+    const double yF = Sy/A;
+    w.centroid = frame.x + Vec3(xF, yF, frame.level - frame.x.z());
+    w.Ixx = std::max(0.0, Qxx - A*xF*xF);
+    w.Iyy = std::max(0.0, Qyy - A*yF*yF);
+    return w;
+}
+
+
 FloeDamping::FloeDamping
 (
     const WaterSettings& water,
@@ -112,9 +151,14 @@ Vec3 FloeDamping::coefficients(const World& world, int i) const
 
     static thread_local PolyhedronBuffer outerBuffer;
     const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
-    const Mat3 R = b.rotation();
+    // The floe's frame, shared with buoyancy and drag
+    const WaterFrame& frame = waterFrame(world, i, water_.level);
+    const Mat3& R = frame.R;
 
-    const Waterplane wp = waterplane(P, R, b.x, water_.level);
+    const Waterplane wp =
+        frame.valid()
+      ? waterplane(frame)
+      : waterplane(P, R, b.x, water_.level);
     if (wp.area == 0) return c;
 
     const double k3 = rhoG*wp.area;
@@ -122,8 +166,7 @@ Vec3 FloeDamping::coefficients(const World& world, int i) const
 
     if (settings_.rollPitch > 0)
     {
-        const SubmergedVolume sub =
-            submergedVolume(P, R, b.x, water_.level);
+        const SubmergedVolume& sub = frameVolume(P, frame);
         const double VBG = sub.volume*(sub.centroid.z() - b.x.z());
         const double k4 = rhoG*(wp.Iyy + VBG);
         const double k5 = rhoG*(wp.Ixx + VBG);

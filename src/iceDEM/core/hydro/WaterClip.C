@@ -343,43 +343,13 @@ SubmergedVolume submergedVolume
 
     const int nf = static_cast<int>(P.faces().size());
 
-    // A right prism (a floe) cut across its sides only: the truncated
-    // prism. With the field h a (a the prism's axis, out of the bottom cap),
-    // the sides (a.n = 0) drop out of the divergence theorem as the water
-    // plane does: a length l = -h/a_z along a above every bottom point,
-    //   V = int_bottom l dA,  int r dV = int_bottom (r l + a l^2/2) dA.
+    // A right prism (a floating floe) cut across its sides only: the
+    // truncated prism
     {
         const int bottom = truncatedPrismBottom(P, R, h);
         if (bottom >= 0)
         {
-            const Vec3 nb = R*P.faces()[bottom].normal;
-            const double az = -nb.z();
-            const int n = P.faces()[bottom].count;
-            const Vec3& a = r[P.faceVertex(bottom, 0)];
-            const double ha = h[P.faceVertex(bottom, 0)];
-            double I0 = 0, I2 = 0;
-            Vec3 I1 = Vec3::Zero();
-            for (int k = 1; k + 1 < n; ++k)
-            {
-                const int vb = P.faceVertex(bottom, k);
-                const int vc = P.faceVertex(bottom, k + 1);
-                const Vec3& b = r[vb];
-                const Vec3& c = r[vc];
-                const double hb = h[vb], hc = h[vc];
-                const double A = 0.5*((b - a).cross(c - a)).dot(nb);
-                const double sh = ha + hb + hc;
-                I0 += A*sh/3.0;
-                I1 += (A/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
-                I2 += (A/6.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
-            }
-            const double vol = -I0/az;
-            if (vol > 0)
-            {
-                result.volume = vol;
-                result.centroid =
-                    x + (-I1/az - (0.5*I2/(az*az))*nb)/vol;
-            }
-            return result;
+            return truncatedPrismVolume(P, R, r, h, bottom, x);
         }
     }
 
@@ -389,10 +359,7 @@ SubmergedVolume submergedVolume
     Vec3 q[cap];
     double hq[cap];
 
-    double vol = 0;         // sum n_z int h dA
-    Vec3 first = Vec3::Zero();  // sum n_z int h r dA (x, y used)
-    double second = 0;      // sum n_z int h^2/2 dA
-
+    WetVolumeSums sums;
     for (int f = 0; f < nf; ++f)
     {
         const int n = P.faces()[f].count;
@@ -415,34 +382,92 @@ SubmergedVolume submergedVolume
         // A face entirely below is its own clipped polygon
         const bool whole = nBelow == n;
         const int m = whole ? n : clipNegative(p, s, n, q, hq);
-        const Vec3* qq = whole ? p : q;
-        const double* hh = whole ? s : hq;
-
-        // Fan from vertex 0; (q1 - q0) x (q2 - q0) . e_z = 2 A n_z
-        for (int k = 1; k + 1 < m; ++k)
-        {
-            const Vec3& a = qq[0];
-            const Vec3& b = qq[k];
-            const Vec3& c = qq[k + 1];
-            const double az =
-                0.5*((b.x() - a.x())*(c.y() - a.y())
-               - (b.y() - a.y())*(c.x() - a.x()));
-            const double ha = hh[0], hb = hh[k], hc = hh[k + 1];
-            const double sh = ha + hb + hc;
-            vol += az*sh/3.0;
-            first += (az/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
-            second +=
-                (az/12.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
-        }
+        sums.add(whole ? p : q, whole ? s : hq, m);
     }
+    return sums.result(x, h0);
+}
 
+
+SubmergedVolume truncatedPrismVolume
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const Vec3* r,
+    const double* h,
+    int bottom,
+    const Vec3& x
+)
+{
+    // With the field h a (a the prism's axis, out of the bottom cap), the
+    // sides (a.n = 0) drop out of the divergence theorem as the water plane
+    // does: a length l = -h/a_z along a above every bottom point,
+    //   V = int_bottom l dA,  int r dV = int_bottom (r l + a l^2/2) dA.
+    SubmergedVolume result;
+    result.volume = 0;
+    result.centroid = x;
+    const Vec3 nb = R*P.faces()[bottom].normal;
+    const double az = -nb.z();
+    const int n = P.faces()[bottom].count;
+    const Vec3& a = r[P.faceVertex(bottom, 0)];
+    const double ha = h[P.faceVertex(bottom, 0)];
+    double I0 = 0, I2 = 0;
+    Vec3 I1 = Vec3::Zero();
+    for (int k = 1; k + 1 < n; ++k)
+    {
+        const int vb = P.faceVertex(bottom, k);
+        const int vc = P.faceVertex(bottom, k + 1);
+        const Vec3& b = r[vb];
+        const Vec3& c = r[vc];
+        const double hb = h[vb], hc = h[vc];
+        const double A = 0.5*((b - a).cross(c - a)).dot(nb);
+        const double sh = ha + hb + hc;
+        I0 += A*sh/3.0;
+        I1 += (A/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+        I2 += (A/6.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+    }
+    const double vol = -I0/az;
     if (vol > 0)
     {
         result.volume = vol;
-        result.centroid =
-            x + Vec3(first.x()/vol, first.y()/vol, second/vol - h0);
+        result.centroid = x + (-I1/az - (0.5*I2/(az*az))*nb)/vol;
     }
     return result;
+}
+
+
+void WetVolumeSums::add(const Vec3* q, const double* hq, int m)
+{
+    // Fan from vertex 0; (q1 - q0) x (q2 - q0) . e_z = 2 A n_z
+    for (int k = 1; k + 1 < m; ++k)
+    {
+        const Vec3& a = q[0];
+        const Vec3& b = q[k];
+        const Vec3& c = q[k + 1];
+        const double az =
+            0.5*((b.x() - a.x())*(c.y() - a.y())
+           - (b.y() - a.y())*(c.x() - a.x()));
+        const double ha = hq[0], hb = hq[k], hc = hq[k + 1];
+        const double sh = ha + hb + hc;
+        vol += az*sh/3.0;
+        first += (az/12.0)*(ha*a + hb*b + hc*c + sh*(a + b + c));
+        second +=
+            (az/12.0)*(ha*ha + hb*hb + hc*hc + ha*hb + hb*hc + hc*ha);
+    }
+}
+
+
+SubmergedVolume WetVolumeSums::result(const Vec3& x, double h0) const
+{
+    SubmergedVolume out;
+    out.volume = 0;
+    out.centroid = x;
+    if (vol > 0)
+    {
+        out.volume = vol;
+        out.centroid =
+            x + Vec3(first.x()/vol, first.y()/vol, second/vol - h0);
+    }
+    return out;
 }
 
 

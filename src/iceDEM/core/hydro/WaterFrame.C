@@ -1,0 +1,203 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+\*---------------------------------------------------------------------------*/
+
+#include "WaterFrame.H"
+#include "World.H"
+
+#include <limits>
+
+namespace iceDEM
+{
+
+void computeWaterFrame
+(
+    const PolyhedronView& P,
+    const Mat3& R,
+    const Vec3& x,
+    double level,
+    WaterFrame& frame
+)
+{
+    frame.hasVolume = false;
+    frame.nWet = 0;
+    frame.wetBegin[0] = 0;
+    frame.R = R;
+    frame.x = x;
+    frame.level = level;
+
+    const auto V = P.vertices();
+    const int nv = static_cast<int>(V.size());
+    const int nf = static_cast<int>(P.faces().size());
+    frame.nv = nv;
+    frame.framed = nv <= maxClipVertices && nf <= WaterFrame::maxFaces;
+    if (!frame.framed)
+    {
+        return;
+    }
+
+    // World axes relative to x (round-off scales with the size of the body,
+    // not with its distance from the origin), heights h = z - level
+    const double h0 = x.z() - level;
+    double hMin = std::numeric_limits<double>::max();
+    double hMax = -hMin;
+    for (int k = 0; k < nv; ++k)
+    {
+        frame.r[k] = R*V[k];
+        frame.h[k] = frame.r[k].z() + h0;
+        hMin = std::min(hMin, frame.h[k]);
+        hMax = std::max(hMax, frame.h[k]);
+    }
+    frame.hMin = hMin;
+    frame.hMax = hMax;
+    if (!(hMin < 0))
+    {
+        return;
+    }
+
+    constexpr int cap = SubmergedFace::maxVertices;
+    Vec3 p[cap];
+    double s[cap];
+    int end = 0;
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        if (n + 1 > cap)
+        {
+            // Beyond the clip's buffers: the general paths
+            frame.framed = false;
+            frame.nWet = 0;
+            return;
+        }
+        int nBelow = 0;
+        for (int k = 0; k < n; ++k)
+        {
+            const int v = P.faceVertex(f, k);
+            p[k] = frame.r[v];
+            s[k] = frame.h[v];
+            nBelow += s[k] < 0;
+        }
+        if (nBelow == 0)
+        {
+            continue;
+        }
+        Vec3* q = frame.wetVertex + end;
+        double* hq = frame.wetHeight + end;
+        int m = n;
+        if (nBelow == n)
+        {
+            // A face entirely below is its own wet polygon
+            for (int k = 0; k < n; ++k)
+            {
+                q[k] = p[k];
+                hq[k] = s[k];
+            }
+        }
+        else
+        {
+            m = clipNegative(p, s, n, q, hq);
+            if (m == 0) continue;
+        }
+        end += m;
+        frame.wetFace[frame.nWet] = f;
+        frame.wetBegin[++frame.nWet] = end;
+    }
+}
+
+
+const WaterFrame& waterFrame(const World& world, int i, double level)
+{
+    // One slot per thread: the models call it body by body
+    static thread_local WaterFrame frame;
+
+    const Body& b = world.bodies()[i];
+    if
+    (
+        frame.world == &world
+     && frame.evaluation == world.evaluation()
+     && frame.body == i
+     && frame.level == level
+     && frame.x == b.x
+     && frame.q.coeffs() == b.q.coeffs()
+    )
+    {
+        return frame;
+    }
+
+    // This thread's room for a derived outer polyhedron (no allocation once
+    // it has grown to the largest floe; the world keeps them for models
+    // that read them)
+    static thread_local PolyhedronBuffer outerBuffer;
+    // Invalidate first: an Error below leaves no half-computed frame behind
+    frame.world = nullptr;
+    computeWaterFrame
+    (
+        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame
+    );
+    frame.world = &world;
+    frame.evaluation = world.evaluation();
+    frame.body = i;
+    frame.q = b.q;
+    return frame;
+}
+
+
+const SubmergedVolume& frameVolume
+(
+    const PolyhedronView& P,
+    const WaterFrame& frame
+)
+{
+    if (frame.hasVolume)
+    {
+        return frame.volume;
+    }
+    SubmergedVolume& result = frame.volume;
+    frame.hasVolume = true;
+
+    // As submergedVolume: the truncated prism, else the wet polygons; the
+    // tetrahedra where the sums would cancel (entirely below); polyhedra
+    // too large to frame take submergedVolume itself
+    if (!frame.valid())
+    {
+        result = submergedVolume(P, frame.R, frame.x, frame.level);
+        return result;
+    }
+    result.volume = 0;
+    result.centroid = frame.x;
+    if (!frame.wet())
+    {
+        return result;
+    }
+    if (frame.hMax < 0)
+    {
+        result = submergedVolumeByTetrahedra
+        (
+            P, frame.R, frame.x, frame.level
+        );
+        return result;
+    }
+    const int bottom = truncatedPrismBottom(P, frame.R, frame.h);
+    if (bottom >= 0)
+    {
+        result = truncatedPrismVolume
+        (
+            P, frame.R, frame.r, frame.h, bottom, frame.x
+        );
+        return result;
+    }
+    WetVolumeSums sums;
+    for (int k = 0; k < frame.nWet; ++k)
+    {
+        const int b = frame.wetBegin[k];
+        sums.add
+        (
+            frame.wetVertex + b, frame.wetHeight + b, frame.wetBegin[k + 1] - b
+        );
+    }
+    result = sums.result(frame.x, frame.x.z() - frame.level);
+    return result;
+}
+
+} // namespace iceDEM
