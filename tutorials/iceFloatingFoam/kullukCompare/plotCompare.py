@@ -18,6 +18,8 @@
 #                and of the horizontal speed |U_h|
 #   loads.png    mean horizontal ice load, driving force and line tensions
 #                with their intervals; the load's running mean
+#   topView.png  the floes at the last common write time, coloured by speed
+#                (../kulluk/plotKulluk.py)
 #   flow.png     |U_h| of UMean under the ice (z = -1.55 m) and on the
 #                section y = 0.1 m, one-way and two-way and their difference;
 #                the probes along the drift line with intervals
@@ -367,6 +369,12 @@ def main():
     fig.tight_layout()
     fig.savefig(os.path.join(a.out, "flow.png"), dpi=100)
     plt.close(fig)
+
+    # ---- the floes around the hull at the last common write time of the
+    # first DEM output segment (../kulluk/plotKulluk.py's top view)
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "kulluk"))
+    import plotKulluk
+    plotKulluk.plot_top_view(list(cases.values()), [LABEL.get(v, v) for v in cases], a.out)
 
     # ---- the table on stdout
     print("statistics over t > %g s (95 %% half-widths, batch means of %d batches)"
