@@ -376,6 +376,27 @@ def main():
     import plotKulluk
     plotKulluk.plot_top_view(list(cases.values()), [LABEL.get(v, v) for v in cases], a.out)
 
+    # ---- two-way: the momentum exchange of the log (fluid source impulse
+    # = - floes' drag impulse per flow step, and the impulse no cell took)
+    for v, c in cases.items():
+        log = os.path.join(c, "log.iceFloatingFoam")
+        if v != "twoWay" or not os.path.isfile(log):
+            continue
+        imb, drag, lost = [], np.zeros(3), np.zeros(3)
+        vec = r"\(([-+0-9.eE]+) ([-+0-9.eE]+) ([-+0-9.eE]+)\)"
+        for line in open(log):
+            m = re.search(r"floes' drag impulse " + vec + r" N s, fluid source impulse .*"
+                          r"relative imbalance ([-+0-9.eE]+), lost \(no cell\) " + vec, line)
+            if m:
+                g = [float(x) for x in m.groups()]
+                drag += g[0:3]
+                imb.append(abs(g[3]))
+                lost += g[4:7]
+        if imb:
+            print("%s: %d coupling steps (log lines) with drag returned to the flow: largest relative imbalance "
+                  "%.3g; floes' drag impulse in all (%.4g %.4g %.4g) N s, lost (no cell) "
+                  "(%.3g %.3g %.3g) N s" % ((v, len(imb), max(imb)) + tuple(drag) + tuple(lost)))
+
     # ---- the table on stdout
     print("statistics over t > %g s (95 %% half-widths, batch means of %d batches)"
           % (a.transient, BATCHES))
