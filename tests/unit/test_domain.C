@@ -473,6 +473,44 @@ TEST(periodic, voronoiFieldFillsThePeriodicDomain)
 }
 
 
+TEST(periodic, voronoiFieldWithAZoneAtHighConcentrationDoesNotTouch)
+{
+    // A small periodic pack at 90 % around a large exclusion zone (the
+    // kullukPack case's 150 m x 150 m box around a 35 m circle): the
+    // concentration correction used to raise the tessellation
+    // concentration to 1, where the cells tile the rectangle and
+    // neighbours share their edges, and the DEM refused to start ("bodies
+    // 0 and 1 touch at the start"). It now stays below 1.
+    VoronoiFieldSettings s;
+    s.xmin = -75; s.xmax = 75; s.ymin = -75; s.ymax = 75;
+    s.concentration = 0.9;
+    s.meanFloeArea = 150;
+    s.radius = 0.05;
+    s.thickness.value = 1.2;
+    s.seed = 7;
+    s.lloydIterations = 2;
+    s.exclusionZones.push_back
+    (
+        {"hull", ExclusionZone::Type::circle, Vec2(0, 0), 35, {}}
+    );
+    VoronoiFieldReport rep;
+    const std::vector<Floe> floes = generateVoronoiField(s, rep);
+    EXPECT_LT(rep.tessellationConcentration, 1);
+    EXPECT_GT(rep.corrections, 0);
+    EXPECT_NEAR(rep.concentration, 0.9, 0.01);
+
+    World w(noGravity());
+    const int mat = w.addMaterial(ice());
+    for (const Floe& f : floes)
+    {
+        const int shape = w.addShape(DilatedShape(f.core(), f.radius));
+        w.addBody(shape, mat, Vec3::Zero());
+    }
+    w.setDomain(periodicBox(-75, 75, -75, 75));
+    EXPECT_NO_THROW(w.initialise());
+}
+
+
 namespace
 {
 

@@ -1181,12 +1181,17 @@ std::vector<Floe> generateVoronoiField
         {
             break;
         }
-        const double next = std::min
-        (
-            1.0,
-            roundTo(ct*c/rep.concentration, s.concentrationResolution)
-        );
-        if (next == ct)
+        // c_t stays below 1: at 1 the cells tile the tessellation rectangle
+        // and step 5 moves nothing, so neighbours share their edges and the
+        // DEM refuses the touching floes. A correction that would reach 1
+        // goes half-way to 1 instead: every field keeps its gaps (of about
+        // (1 - c_t)/2 of a floe's distance from its neighbour).
+        double next = roundTo(ct*c/rep.concentration, s.concentrationResolution);
+        if (next >= 1)
+        {
+            next = 0.5*(ct + 1);
+        }
+        if (next == ct || next >= 1)
         {
             break;
         }
