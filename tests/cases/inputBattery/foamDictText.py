@@ -3,7 +3,8 @@
 """Find and edit entries of an OpenFOAM dictionary file as text (keeps
 comments, #include and $macros as they are): enough of the syntax for the
 case files of iceDEM (keywords, sub-dictionaries, values up to ';', lists
-that may hold dictionaries)."""
+that may hold dictionaries: the dictionaries of a list are the list
+entry's children '0', '1', ...)."""
 
 import re
 
@@ -76,15 +77,24 @@ def parse(text):
                 continue
             depth = 0
             vstart = s2
+            elements = []           # dictionaries of a list: keys '0', '1' ...
             while pos[0] < len(toks):
                 kind3, val3, s3, e3 = toks[pos[0]]
                 pos[0] += 1
+                if kind3 == 'punct' and val3 == '{' and depth == 1:
+                    children, close = parse_dict(True)
+                    end = toks[pos[0]][3] if pos[0] < len(toks) else len(text)
+                    pos[0] += 1
+                    elements.append(Entry(str(len(elements)), s3, s3, end,
+                                          children, close))
+                    continue
                 if kind3 == 'punct' and val3 in '({[':
                     depth += 1
                 elif kind3 == 'punct' and val3 in ')}]':
                     depth -= 1
                 elif kind3 == 'punct' and val3 == ';' and depth <= 0:
-                    ent = Entry(key, s, vstart, e3)
+                    ent = Entry(key, s, vstart, e3,
+                                elements if elements else None)
                     ent.value = text[vstart:s3].strip()
                     entries.append(ent)
                     break

@@ -10,6 +10,7 @@
 #include "DynamicList.H"
 #include "HashTable.H"
 #include "token.H"
+#include "Switch.H"
 
 #include <cstring>
 
@@ -218,13 +219,29 @@ Foam::tensor Foam::iceDEMChecks::rotationTensor
 )
 {
     const tensor R = dict.getOrDefault<tensor>(key, tensor::I);
-    const scalar orth = mag((R & R.T()) - tensor::I);
-    if (!(orth < 1e-6) || !(mag(det(R) - 1) < 1e-6))
+    // A rotation's components lie in [-1, 1]: checked first, so that the
+    // products below cannot overflow
+    bool bounded = true;
+    for (direction i = 0; i < tensor::nComponents; ++i)
+    {
+        bounded = bounded && std::abs(R[i]) <= 1 + 1e-6;
+    }
+    const scalar orth = bounded ? mag((R & R.T()) - tensor::I) : GREAT;
+    if (!bounded || !(orth < 1e-6) || !(mag(det(R) - 1) < 1e-6))
     {
         FatalIOErrorInFunction(dict)
             << "Entry '" << key << "' is " << R
-            << ": it must be a rotation tensor (orthonormal rows, det +1;"
-            << " R & R.T() - I has norm " << orth << ", det " << det(R)
+            << ": it must be a rotation tensor (orthonormal rows, det +1;";
+        if (bounded)
+        {
+            FatalIOError
+                << " R & R.T() - I has norm " << orth << ", det " << det(R);
+        }
+        else
+        {
+            FatalIOError << " a component is outside [-1, 1]";
+        }
+        FatalIOError
             << ")" << nl
             << exit(FatalIOError);
     }
@@ -342,9 +359,115 @@ void Foam::iceDEMChecks::checkDuplicateKeywords
 }
 
 
+namespace
+{
+
+//- The '|' separated names of a listed range
+Foam::wordList listedNames(const char* file, const char* dict, const char* key)
+{
+    using namespace Foam;
+    for (const iceDEMChecks::caseEntry& c : iceDEMChecks::caseEntries())
+    {
+        if
+        (
+            std::strcmp(c.file, file) == 0
+         && std::strcmp(c.dictionary, dict) == 0
+         && std::strcmp(c.keyword, key) == 0
+        )
+        {
+            wordList names;
+            std::string r(c.range);
+            std::size_t b = 0;
+            for (std::size_t e; (e = r.find('|', b)) != std::string::npos; b = e + 1)
+            {
+                names.append(word(r.substr(b, e - b)));
+            }
+            names.append(word(r.substr(b)));
+            return names;
+        }
+    }
+    return wordList();
+}
+
+
+//- OpenFOAM's entries of iceDEM's function objects that OpenFOAM reads
+//  before the object exists (executeControl, writeControl: its error names
+//  the file only) or never checks (log, region): checked here, by name,
+//  before the function objects start
+void checkFunctionObjectControls(const Foam::dictionary& cd)
+{
+    using namespace Foam;
+    const dictionary* fptr = cd.findDict("functions", keyType::LITERAL);
+    if (!fptr)
+    {
+        return;
+    }
+    const char* file = "system/controlDict";
+    const char* where = "functions/*(type iceLoadStatistics)";
+    for (const entry& fe : *fptr)
+    {
+        if
+        (
+            !fe.isDict()
+         || fe.dict().getOrDefault<word>("type", word::null)
+         != "iceLoadStatistics"
+        )
+        {
+            continue;
+        }
+        const dictionary& d = fe.dict();
+        for (const char* key : {"executeControl", "writeControl"})
+        {
+            if (!d.found(key, keyType::LITERAL))
+            {
+                continue;
+            }
+            const wordList valid(listedNames(file, where, key));
+            ITstream& is = d.lookup(key, keyType::LITERAL);
+            const token t(is.size() == 1 ? is[0] : token());
+            if (!t.isWord() || !valid.found(t.wordToken()))
+            {
+                FatalIOErrorInFunction(d)
+                    << "Entry '" << key << "' of function object "
+                    << fe.keyword() << " in " << file << " is " << is
+                    << ": valid are " << flatOutput(valid) << nl
+                    << exit(FatalIOError);
+            }
+        }
+        if (d.found("log", keyType::LITERAL))
+        {
+            ITstream& is = d.lookup("log", keyType::LITERAL);
+            const token t(is.size() == 1 ? is[0] : token());
+            if (!t.isWord() || !Switch(t.wordToken(), true).valid())
+            {
+                FatalIOErrorInFunction(d)
+                    << "Entry 'log' of function object " << fe.keyword()
+                    << " in " << file << " is " << is << ": a switch"
+                    << " (true/false, on/off, yes/no) is expected" << nl
+                    << exit(FatalIOError);
+            }
+        }
+        if (d.found("region", keyType::LITERAL))
+        {
+            ITstream& is = d.lookup("region", keyType::LITERAL);
+            if (is.size() != 1 || !is[0].isWord())
+            {
+                FatalIOErrorInFunction(d)
+                    << "Entry 'region' of function object " << fe.keyword()
+                    << " in " << file << " is " << is << ": a mesh region"
+                    << " name is expected" << nl << exit(FatalIOError);
+            }
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
 void Foam::iceDEMChecks::checkTimeControls(const Time& runTime)
 {
     const dictionary& cd = runTime.controlDict();
+    checkFunctionObjectControls(cd);
 
     const scalar dt = cd.get<scalar>("deltaT");
     if (!(dt > 0) || !std::isfinite(dt))

@@ -272,7 +272,8 @@ void Foam::functionObjects::iceLoadStatistics::openFiles()
         << "# steady part (time > transientEnd): halfWidth of the "
         << confidence_*100 << " % interval of the mean by " << batches_
         << " batch means; correlated = 1: lag-1 correlation of the batch"
-        << " means > 1.645/sqrt(batches)" << nl
+        << " means > 1.645/sqrt(batches); a row commented out (#) has too"
+        << " few samples for the interval (it says how many are needed)" << nl
         << "# time quantity samples transientEnd mean std max P99"
         << " halfWidth batchSize lag1 correlated" << endl;
 
@@ -320,10 +321,11 @@ void Foam::functionObjects::iceLoadStatistics::writeRow
     const size_t n = x.size() - start;
     const double tEnd = start > 0 ? t_[start - 1] : time_.startTime().value();
     OFstream& os = statsFile_();
-    os  << time_.timeName() << ' ' << quantity << ' ' << n << ' ' << tEnd;
     if (n == 0)
     {
-        os  << " nan nan nan nan nan 0 nan 0" << endl;
+        // Nothing is defined: a comment line, never 'nan'
+        os  << "# " << time_.timeName() << ' ' << quantity << ' ' << n << ' '
+            << tEnd << " no steady samples" << endl;
         return;
     }
     double mean, sd, mx;
@@ -331,17 +333,20 @@ void Foam::functionObjects::iceLoadStatistics::writeRow
     const double p99 = quantile(x.data() + start, n, 0.99, scratch_);
     const BatchMeansResult bm =
         batchMeans(x.data() + start, n, batches_, confidence_);
-    os  << ' ' << mean << ' ' << sd << ' ' << mx << ' ' << p99 << ' ';
-    if (bm.batches)
+    if (!bm.batches)
     {
-        os  << bm.halfWidth << ' ' << bm.batchSize << ' ' << bm.lag1 << ' '
-            << bm.correlated;
+        // Too few samples for the batch means: the interval is left out;
+        // the row is a comment, so that every data row has every column
+        os  << "# " << time_.timeName() << ' ' << quantity << ' ' << n << ' '
+            << tEnd << ' ' << mean << ' ' << sd << ' ' << mx << ' ' << p99
+            << " not enough samples for the interval: " << n << " of the "
+            << batches_ << " needed" << endl;
+        return;
     }
-    else
-    {
-        os  << "nan 0 nan 0";
-    }
-    os  << endl;
+    os  << time_.timeName() << ' ' << quantity << ' ' << n << ' ' << tEnd
+        << ' ' << mean << ' ' << sd << ' ' << mx << ' ' << p99 << ' '
+        << bm.halfWidth << ' ' << bm.batchSize << ' ' << bm.lag1 << ' '
+        << bm.correlated << endl;
 }
 
 
@@ -414,12 +419,29 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
             writeRow("maxTension", Tmax_, start);
         }
 
-        balanceFile_()
-            << time_.timeName() << ' ' << n << ' '
+        // A row only where the ratio and its interval are defined; else a
+        // comment that says why (never 'nan')
+        OFstream& os = balanceFile_();
+        const bool defined = dMag > 0 && bd.batches;
+        os  << (defined ? "" : "# ") << time_.timeName() << ' ' << n << ' '
             << (start > 0 ? t_[start - 1] : time_.startTime().value()) << ' '
             << lx << ' ' << ly << ' ' << dx << ' ' << dy << ' '
-            << load << ' ' << dMag << ' ' << ratio << ' ' << ratioHW << ' '
-            << bd.lag1 << ' ' << bd.correlated << ' ' << steady << endl;
+            << load << ' ' << dMag << ' ';
+        if (defined)
+        {
+            os  << ratio << ' ' << ratioHW << ' ' << bd.lag1 << ' '
+                << bd.correlated << ' ' << steady;
+        }
+        else if (!(dMag > 0))
+        {
+            os  << "no driving force on the floes: the ratio is undefined";
+        }
+        else
+        {
+            os  << "not enough samples for the interval: " << n
+                << " of the " << batches_ << " needed";
+        }
+        os  << endl;
     }
 
     Info<< type() << ' ' << name() << " at " << time_.timeName() << ": "
@@ -433,10 +455,22 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
             Info<< " +- " << bF.halfWidth
                 << (bF.correlated ? " (batches correlated: run longer)" : "");
         }
+        else
+        {
+            Info<< " (not enough samples for the interval: " << n
+                << " of the " << batches_ << " needed)";
+        }
         Info<< ", std " << sdF << ", max " << maxF << ", P99 " << p99F << nl
             << "    force balance: load on structure + walls " << load
-            << " N, driving force on the floes " << dMag << " N, ratio "
-            << ratio << " +- " << ratioHW;
+            << " N, driving force on the floes " << dMag << " N";
+        if (dMag > 0)
+        {
+            Info<< ", ratio " << ratio;
+            if (bd.batches)
+            {
+                Info<< " +- " << ratioHW;
+            }
+        }
         if (!steady)
         {
             Info<< nl << "    no steady state detected (MSER-5: the best"
@@ -542,6 +576,32 @@ bool Foam::functionObjects::iceLoadStatistics::read(const dictionary& dict)
     if (mooringGiven_)
     {
         mooring_ = dict.get<wordList>("mooring");
+    }
+
+    // An empty list would select nothing and leave that load out of the
+    // statistics and the force balance without a word; omitting the entry
+    // selects every one (or none where there is none), which covers each
+    // meaningful case
+    const struct { const char* key; bool given; label size; const char* all; }
+    selections[] =
+    {
+        {"structure", structureGiven_, structureSel_.size(),
+         "every body that is not free"},
+        {"walls", wallsGiven_, wallSel_.size(), "every wall"},
+        {"mooring", mooringGiven_, mooring_.size(),
+         "every spreadMooring restraint"}
+    };
+    for (const auto& sel : selections)
+    {
+        if (sel.given && sel.size == 0)
+        {
+            FatalIOErrorInFunction(dict)
+                << "Entry '" << sel.key << "' of function object " << name()
+                << " in system/controlDict is an empty list: it would select"
+                << " nothing. Give names (or regular expressions), or omit"
+                << " the entry to select " << sel.all << nl
+                << exit(FatalIOError);
+        }
     }
 
     // transient: a time [s] or 'auto'

@@ -14,12 +14,63 @@
 #include "addToRunTimeSelectionTable.H"
 #include "uniformDimensionedFields.H"
 #include "forces.H"
+#include "volFields.H"
 
 namespace Foam
 {
     defineTypeNameAndDebug(rigidLidMotionSolver, 0);
     addToRunTimeSelectionTable(motionSolver, rigidLidMotionSolver, dictionary);
 }
+
+
+namespace
+{
+
+//- The coefficients, checked before OpenFOAM's sixDoFRigidBodyMotion reads
+//  them (it takes any number, and a zero mass or a huge state crashes the
+//  first step): the keywords and the ranges of caseEntriesList.H, the
+//  sub-dictionaries, the rotations, and the entries nothing uses
+//  (innerDistance, outerDistance) are numbers. Coefficients at the top
+//  level of dynamicMeshDict (no Coeffs dictionary) share it with the
+//  mesh's own entries and are not checked.
+const Foam::dictionary& checkedCoeffs
+(
+    const Foam::dictionary& dict,
+    const Foam::word& coeffsName,
+    const Foam::dictionary& coeffs
+)
+{
+    using namespace Foam;
+    if (!dict.isDict(coeffsName))
+    {
+        return coeffs;
+    }
+    iceDEMChecks::checkEntries
+    (
+        coeffs, "constant/dynamicMeshDict",
+        {"rigidLidSixDoFRigidBodyMotionCoeffs"},
+        "rigidLidSixDoFRigidBodyMotionCoeffs"
+    );
+    for (const char* key : {"innerDistance", "outerDistance"})
+    {
+        if (coeffs.found(key, keyType::LITERAL))
+        {
+            const scalar v = coeffs.get<scalar>(key);
+            if (!std::isfinite(v))
+            {
+                FatalIOErrorInFunction(coeffs)
+                    << "Entry '" << key << "' is " << v << ": a finite"
+                    << " number (ignored: nothing is interpolated)" << nl
+                    << exit(FatalIOError);
+            }
+        }
+    }
+    iceDEMChecks::rotationTensor(coeffs, "orientation");
+    iceDEMChecks::rotationTensor(coeffs, "initialOrientation");
+    return coeffs;
+}
+
+} // End anonymous namespace
 
 
 Foam::dictionary Foam::rigidLidMotionSolver::stateDict
@@ -53,7 +104,12 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
 )
 :
     points0MotionSolver(mesh, dict, typeName),
-    motion_(coeffDict(), stateDict(mesh, coeffDict()), mesh.time()),
+    motion_
+    (
+        checkedCoeffs(dict, typeName + "Coeffs", coeffDict()),
+        stateDict(mesh, coeffDict()),
+        mesh.time()
+    ),
     patches_(coeffDict().get<wordRes>("patches")),
     rhoName_(coeffDict().getOrDefault<word>("rho", "rho")),
     rhoInf_(1),
@@ -88,18 +144,7 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
             << " rigidly; remove the entry" << nl << exit(FatalIOError);
     }
     // A misspelt optional entry would be ignored (the stock motion reads
-    // its entries with defaults). Coefficients at the top level of
-    // dynamicMeshDict (no Coeffs dictionary) share it with the mesh's own
-    // entries and are not checked.
-    if (dict.isDict(typeName + "Coeffs"))
-    {
-        iceDEMChecks::checkEntries
-        (
-            coeffDict(), "constant/dynamicMeshDict",
-            {"rigidLidSixDoFRigidBodyMotionCoeffs"},
-            "rigidLidSixDoFRigidBodyMotionCoeffs"
-        );
-    }
+    // its entries with defaults): checked with the ranges in checkedCoeffs
 }
 
 
@@ -199,6 +244,16 @@ void Foam::rigidLidMotionSolver::solve()
     if (t.foundObject<uniformDimensionedVectorField>("g"))
     {
         g = t.lookupObject<uniformDimensionedVectorField>("g").value();
+    }
+
+    // The density field: incompressible flow has none (p is kinematic)
+    if (rhoName_ != "rhoInf" && !mesh().foundObject<volScalarField>(rhoName_))
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << "Entry 'rho' (" << rhoName_ << ") in " << coeffDict().name()
+            << ": no density field '" << rhoName_ << "' in this flow. With"
+            << " a kinematic pressure (iceFloatingFoam) give 'rho rhoInf;"
+            << " rhoInf <density [kg/m3]>;'" << nl << exit(FatalIOError);
     }
 
     // The flow's force and moment about the centre of rotation; only the
