@@ -9,6 +9,7 @@
 #include "contact/NeighbourList.H"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -17,10 +18,17 @@ namespace iceDEM
 
 using namespace worldDetail;
 
+namespace
+{
+    //- Source of World::instance(): 1, 2, ... over the process
+    std::atomic<long> worldsMade{0};
+}
+
 World::World(const WorldSettings& settings)
 :
     settings_(settings),
-    law_(ContactLaw::New(settings.contact))
+    law_(ContactLaw::New(settings.contact)),
+    instance_(++worldsMade)
 {
     if (!(settings_.timeStep > 0))
     {

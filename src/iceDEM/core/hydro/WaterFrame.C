@@ -114,7 +114,7 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     const Body& b = world.bodies()[i];
     if
     (
-        frame.world == &world
+        frame.worldInstance == world.instance()
      && frame.evaluation == world.evaluation()
      && frame.body == i
      && frame.level == level
@@ -130,12 +130,12 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     // that read them)
     static thread_local PolyhedronBuffer outerBuffer;
     // Invalidate first: an Error below leaves no half-computed frame behind
-    frame.world = nullptr;
+    frame.worldInstance = -1;
     computeWaterFrame
     (
         world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame
     );
-    frame.world = &world;
+    frame.worldInstance = world.instance();
     frame.evaluation = world.evaluation();
     frame.body = i;
     frame.q = b.q;
