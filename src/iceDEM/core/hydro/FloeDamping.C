@@ -36,6 +36,49 @@ void checkFloeDampingSettings(const FloeDampingSettings& s)
 }
 
 
+namespace
+{
+
+//- Lid integrals of 1, x, y, x^2, y^2 (coordinates relative to the floe's
+//  centre), summed over fan triangles of the wet faces, each as minus its
+//  signed horizontal projection; the midpoint rule on the edges of each
+//  triangle is exact for quadratics
+struct WaterplaneSums
+{
+    double A = 0, Sx = 0, Sy = 0, Qxx = 0, Qyy = 0;
+
+    void addTriangle(const Vec3& q0, const Vec3& q1, const Vec3& q2)
+    {
+        const double ap = 0.5*((q1 - q0).cross(q2 - q0)).z();
+        if (ap == 0) return;
+        const Vec3 m01 = 0.5*(q0 + q1);
+        const Vec3 m12 = 0.5*(q1 + q2);
+        const Vec3 m20 = 0.5*(q2 + q0);
+        A -= ap;
+        Sx -= ap*(q0.x() + q1.x() + q2.x())/3;
+        Sy -= ap*(q0.y() + q1.y() + q2.y())/3;
+        Qxx -= ap*(m01.x()*m01.x() + m12.x()*m12.x() + m20.x()*m20.x())/3;
+        Qyy -= ap*(m01.y()*m01.y() + m12.y()*m12.y() + m20.y()*m20.y())/3;
+    }
+
+    //- The waterplane of a floe centred at x, the water at level
+    Waterplane waterplane(const Vec3& x, double level) const
+    {
+        Waterplane w;
+        if (!(A > 0)) return w;
+        w.area = A;
+        const double xF = Sx/A;
+        const double yF = Sy/A;
+        w.centroid = x + Vec3(xF, yF, level - x.z());
+        w.Ixx = std::max(0.0, Qxx - A*xF*xF);
+        w.Iyy = std::max(0.0, Qyy - A*yF*yF);
+        return w;
+    }
+};
+
+} // anonymous namespace
+
+
 Waterplane waterplane
 (
     const PolyhedronView& P,
@@ -44,11 +87,8 @@ Waterplane waterplane
     double level
 )
 {
-    // Lid integrals of 1, x, y, x^2, y^2 (coordinates relative to x) as
-    // minus the wet faces' integrals weighted by n_z, i.e. over their signed
-    // projections on the horizontal plane; the midpoint rule on the edges
-    // of each fan triangle is exact for quadratics
-    double A = 0, Sx = 0, Sy = 0, Qxx = 0, Qyy = 0;
+    // The wet faces' fan triangles, relative to x (WaterplaneSums)
+    WaterplaneSums sums;
     SubmergedFace face;
     const int nf = static_cast<int>(P.faces().size());
     for (int f = 0; f < nf; ++f)
@@ -59,35 +99,18 @@ Waterplane waterplane
         {
             const Vec3 q1 = face.vertices[k] - x;
             const Vec3 q2 = face.vertices[k + 1] - x;
-            const double ap = 0.5*((q1 - q0).cross(q2 - q0)).z();
-            if (ap == 0) continue;
-            const Vec3 m01 = 0.5*(q0 + q1);
-            const Vec3 m12 = 0.5*(q1 + q2);
-            const Vec3 m20 = 0.5*(q2 + q0);
-            A -= ap;
-            Sx -= ap*(q0.x() + q1.x() + q2.x())/3;
-            Sy -= ap*(q0.y() + q1.y() + q2.y())/3;
-            Qxx -= ap*(m01.x()*m01.x() + m12.x()*m12.x() + m20.x()*m20.x())/3;
-            Qyy -= ap*(m01.y()*m01.y() + m12.y()*m12.y() + m20.y()*m20.y())/3;
+            sums.addTriangle(q0, q1, q2);
         }
     }
 
-    Waterplane w;
-    if (!(A > 0)) return w;
-    w.area = A;
-    const double xF = Sx/A;
-    const double yF = Sy/A;
-    w.centroid = x + Vec3(xF, yF, level - x.z());
-    w.Ixx = std::max(0.0, Qxx - A*xF*xF);
-    w.Iyy = std::max(0.0, Qyy - A*yF*yF);
-    return w;
+    return sums.waterplane(x, level);
 }
 
 
 Waterplane waterplane(const WaterFrame& frame)
 {
     // As above, from the frame's wet polygons (already relative to x)
-    double A = 0, Sx = 0, Sy = 0, Qxx = 0, Qyy = 0;
+    WaterplaneSums sums;
     for (int wf = 0; wf < frame.nWet; ++wf)
     {
         const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
@@ -97,28 +120,11 @@ Waterplane waterplane(const WaterFrame& frame)
         {
             const Vec3& q1 = q[k];
             const Vec3& q2 = q[k + 1];
-            const double ap = 0.5*((q1 - q0).cross(q2 - q0)).z();
-            if (ap == 0) continue;
-            const Vec3 m01 = 0.5*(q0 + q1);
-            const Vec3 m12 = 0.5*(q1 + q2);
-            const Vec3 m20 = 0.5*(q2 + q0);
-            A -= ap;
-            Sx -= ap*(q0.x() + q1.x() + q2.x())/3;
-            Sy -= ap*(q0.y() + q1.y() + q2.y())/3;
-            Qxx -= ap*(m01.x()*m01.x() + m12.x()*m12.x() + m20.x()*m20.x())/3;
-            Qyy -= ap*(m01.y()*m01.y() + m12.y()*m12.y() + m20.y()*m20.y())/3;
+            sums.addTriangle(q0, q1, q2);
         }
     }
 
-    Waterplane w;
-    if (!(A > 0)) return w;
-    w.area = A;
-    const double xF = Sx/A;
-    const double yF = Sy/A;
-    w.centroid = frame.x + Vec3(xF, yF, frame.level - frame.x.z());
-    w.Ixx = std::max(0.0, Qxx - A*xF*xF);
-    w.Iyy = std::max(0.0, Qyy - A*yF*yF);
-    return w;
+    return sums.waterplane(frame.x, frame.level);
 }
 
 
