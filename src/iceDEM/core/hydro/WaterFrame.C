@@ -156,6 +156,7 @@ const SubmergedVolume& frameVolume
     }
     SubmergedVolume& result = frame.volume;
     frame.hasVolume = true;
+    frame.prismBottom = -1;
 
     // As submergedVolume: the truncated prism, else the wet polygons; the
     // tetrahedra where the sums would cancel (entirely below); polyhedra
@@ -182,6 +183,7 @@ const SubmergedVolume& frameVolume
     const int bottom = truncatedPrismBottom(P, frame.R, frame.h);
     if (bottom >= 0)
     {
+        frame.prismBottom = bottom;
         result = truncatedPrismVolume
         (
             P, frame.R, frame.r, frame.h, bottom, frame.x
