@@ -26,7 +26,8 @@ Description
                   a 0.3 m/s current along x; damping 0.1 of critical in
                   heave, roll and pitch; no wind, as the tutorials but
                   kullukPack; -wind U adds kullukPack's, U m/s along x;
-                  -dragIntegration chooses the drag quadrature).
+                  -dragIntegration and -windIntegration choose the
+                  quadratures).
     Material: ice, density 920 kg/m3, E = 1 GPa, nu = 0.33; friction 0.2,
     restitution 0.3; DEM step 1 ms.
 
@@ -49,11 +50,14 @@ Usage
       -wind U                 floating: wind U m/s along x at the defaults
                               of doc/caseFiles.md (kullukPack: 15.28;
                               default 0: no wind, the tutorials' default)
+      -windIntegration I      floating: wind integration exact | sampled
+                              (default: the core's default)
       -floeDamping on|off     floating: floe damping (default on, as in
                               both solvers wherever there is water)
-      -hydroAccuracy          floating: instead of timing, each floe's drag
-                              and buoyancy by every shortcut against its
-                              reference (after -warmup T), rms and max
+      -hydroAccuracy          floating: instead of timing, each floe's drag,
+                              buoyancy and (with -wind) wind by every
+                              shortcut against its reference (after
+                              -warmup T), rms and max
       -threads 1,2            thread counts
       -steps S                steps per repetition, every field (default:
                               drifting and floating -duration,
@@ -253,6 +257,7 @@ struct Options
     int floatN = 2000;
     std::string dragIntegration;    //!< empty: the core's default
     double wind = 0;                //!< floating: wind along x [m/s]; 0: none
+    std::string windIntegration;    //!< empty: the core's default
     bool floeDamping = true;        //!< floating: floe damping on
     bool hydroAccuracy = false;     //!< floating: accuracy of the shortcuts
     std::vector<int> sizes{500, 2000, 8000, 20000};
@@ -278,7 +283,7 @@ struct Options
 {
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
-        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-floeDamping on|off] [-hydroAccuracy] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
+        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-windIntegration exact|sampled] [-floeDamping on|off] [-hydroAccuracy] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
         " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
@@ -312,6 +317,7 @@ Options parseOptions(int argc, char* argv[])
         else if (opt == "-floatN") o.floatN = std::atoi(value().c_str());
         else if (opt == "-dragIntegration") o.dragIntegration = value();
         else if (opt == "-wind") o.wind = std::atof(value().c_str());
+        else if (opt == "-windIntegration") o.windIntegration = value();
         else if (opt == "-floeDamping")
         {
             const std::string v = value();
@@ -587,11 +593,16 @@ std::unique_ptr<World> buildWorld
         }
         if (o.wind != 0)
         {
+            WindSettings ws;
+            if (!o.windIntegration.empty())
+            {
+                ws.integration = dragIntegrationFromName(o.windIntegration);
+            }
             world->addForceModel
             (
                 std::make_shared<Wind>
                 (
-                    water, WindSettings(), WindHistory(Vec3(o.wind, 0, 0))
+                    water, ws, WindHistory(Vec3(o.wind, 0, 0))
                 )
             );
         }
@@ -847,6 +858,24 @@ void hydroAccuracy(const Field& f, const Options& o)
     const Drag exactForm = drag(DragIntegration::exact, 0, Cf, 0);
     const Drag exactSkin = drag(DragIntegration::exact, 0, 0, Cs);
     ErrorStats form2, skin2, skinRule, skinClosed, skinForced, skinSwitch, volume;
+    // The wind (with -wind U): sampled at subdivision 1 (the default until
+    // issue 16's third round) and 0, and the exact integration, against the
+    // closed form (form drag) and the Richardson limit (skin drag)
+    const Vec3 Ua(o.wind, 0, 0);
+    auto wind = [&](DragIntegration integration, int sub, double Cf, double Cs)
+    {
+        WindSettings s;
+        s.integration = integration;
+        s.subdivision = sub;
+        s.formCoefficient = Cf;
+        s.skinCoefficient = Cs;
+        return Wind(water, s, WindHistory(Ua));
+    };
+    const WindSettings windDefaults;
+    const double CfA = windDefaults.formCoefficient, CsA = windDefaults.skinCoefficient;
+    const Wind exactWindForm = wind(DragIntegration::exact, 0, CfA, 0);
+    const Wind exactWindSkin = wind(DragIntegration::exact, 0, 0, CsA);
+    ErrorStats windForm0, windForm1, windSkin0, windSkin1, windSkinExact, windTotal1;
     PolyhedronBuffer buf;
     for (int i = 0; i < static_cast<int>(bodies.size()); ++i)
     {
@@ -893,6 +922,28 @@ void hydroAccuracy(const Field& f, const Options& o)
         skinForced.add(relError(c*Ic, c*Irc, Sr, SMr, L));
         skinSwitch.add(relError(c*Is, c*Irs, Sr, SMr, L));
 
+        if (o.wind != 0)
+        {
+            Vec3 WF[5], WM[5], WS[5], WSM[5];
+            for (int sub : {0, 1, 3, 4})
+            {
+                wind(DragIntegration::sampled, sub, CfA, 0).bodyWind(*world, i, Ua, WF[sub], WM[sub]);
+                wind(DragIntegration::sampled, sub, 0, CsA).bodyWind(*world, i, Ua, WS[sub], WSM[sub]);
+            }
+            const Vec3 WSr = (4*WS[4] - WS[3])/3, WSMr = (4*WSM[4] - WSM[3])/3;
+            Vec3 WFe, WMe, WSe, WSMe;
+            exactWindForm.bodyWind(*world, i, Ua, WFe, WMe);
+            exactWindSkin.bodyWind(*world, i, Ua, WSe, WSMe);
+            windForm0.add(relError(WF[0], WM[0], WFe, WMe, L));
+            windForm1.add(relError(WF[1], WM[1], WFe, WMe, L));
+            windSkin0.add(relError(WS[0], WSM[0], WSr, WSMr, L));
+            windSkin1.add(relError(WS[1], WSM[1], WSr, WSMr, L));
+            windSkinExact.add(relError(WSe, WSMe, WSr, WSMr, L));
+            // Both together, as the model acts: subdivision 1 against the
+            // exact form drag + the Richardson limit of the skin
+            windTotal1.add(relError(WF[1] + WS[1], WM[1] + WSM[1], WFe + WSr, WMe + WSMr, L));
+        }
+
         // Buoyancy: the frame's (truncated prism) against the tetrahedra
         const SubmergedVolume& sv = frameVolume(P, frame);
         const SubmergedVolume ref =
@@ -913,6 +964,16 @@ void hydroAccuracy(const Field& f, const Options& o)
     skinForced.print("skin drag, closed form everywhere vs Richardson(3, 4)");
     skinSwitch.print("skin drag, skinIntegral (the drag's choice) vs Richardson");
     volume.print("buoyancy: volume + centre/R, frame vs tetrahedra");
+    if (o.wind != 0)
+    {
+        std::printf("# wind %g m/s along x\n", o.wind);
+        windForm0.print("wind form drag, sampled subdivision 0 vs closed form");
+        windForm1.print("wind form drag, sampled subdivision 1 vs closed form");
+        windSkin0.print("wind skin drag, sampled subdivision 0 vs Richardson");
+        windSkin1.print("wind skin drag, sampled subdivision 1 vs Richardson");
+        windSkinExact.print("wind skin drag, exact integration vs Richardson");
+        windTotal1.print("wind, sampled subdivision 1 vs exact form + Richardson skin");
+    }
 }
 
 

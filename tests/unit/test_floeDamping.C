@@ -200,6 +200,73 @@ TEST(FloeDamping, waterFrameAgreesWithThePerFacePaths)
 }
 
 
+TEST(FloeDamping, waterlinePolygonAgreesWithTheWetFaces)
+{
+    // A floating floe's waterplane from its waterline polygon (the lower
+    // cap moved along the axis to the water: waterplane(P, frame), what
+    // the damping uses) against the lid of all wet polygons
+    // (waterplane(frame)) on random poses of an irregular hexagonal prism:
+    // level to heeled by 0.3 rad, at any height (cut across the sides, or
+    // across a cap: there both take the wet polygons). Equal to round-off;
+    // the heeled box's closed form is checked above.
+    std::mt19937 gen(23);
+    std::uniform_real_distribution<double> U(-1, 1);
+    DampWorld dw(1e-3);
+    const int shape = dw.world->addShape
+    (
+        DilatedShape
+        (
+            ConvexPolyhedron::prism
+            (
+                {{-2.1, -1.0}, {0.3, -1.9}, {2.4, -0.6}, {2.0, 1.3},
+                 {-0.2, 2.2}, {-2.3, 0.9}},
+                -0.45, 0.8
+            ),
+            radius
+        )
+    );
+    dw.world->addBody(shape, dw.ice, Vec3::Zero(), Quat::Identity());
+    Body& b = dw.world->bodies()[0];
+    PolyhedronBuffer buf;
+    int lid = 0;
+    double worst = 0;
+    for (int trial = 0; trial < 400; ++trial)
+    {
+        b.q = Quat(Eigen::AngleAxisd
+        (
+            0.3*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+        ));
+        b.x = Vec3(30*U(gen), 30*U(gen), 0.1 + 0.4*U(gen));
+        const PolyhedronView P = dw.world->shapeOf(0).outer(buf);
+        const WaterFrame& frame = waterFrame(*dw.world, 0, 0.1);
+        ASSERT_TRUE(frame.valid());
+        const Waterplane wl = waterplane(P, frame);
+        const Waterplane wf = waterplane(frame);
+        lid += frame.prismBottom >= 0;
+        const double A = std::max(wf.area, 1.0);
+        worst = std::max
+        (
+            worst,
+            std::max(std::abs(wl.area - wf.area)/A, std::abs(wl.Ixx - wf.Ixx)/(A*A))
+        );
+        EXPECT_NEAR(wl.area, wf.area, 1e-13*A) << "trial " << trial;
+        if (wf.area > 1e-6)
+        {
+            EXPECT_NEAR((wl.centroid - wf.centroid).norm(), 0, 1e-13*3)
+                << "trial " << trial;
+        }
+        EXPECT_NEAR(wl.Ixx, wf.Ixx, 1e-12*A*A) << "trial " << trial;
+        EXPECT_NEAR(wl.Iyy, wf.Iyy, 1e-12*A*A) << "trial " << trial;
+    }
+    std::cout << "waterline polygon against the wet faces' lid: " << lid
+              << " of 400 poses by the polygon, largest relative difference "
+              << worst << std::endl;
+    // Most poses are cut across the sides only (the waterline polygon)
+    EXPECT_GT(lid, 150);
+    EXPECT_LT(lid, 400);
+}
+
+
 TEST(FloeDamping, heaveDecayFollowsTheLinearModel)
 {
     const SingleThread oneThread;

@@ -20,6 +20,9 @@ Description
         sees |w| w, the form drag each leading side w_n^2); no spin;
       - the same for a sparse field of floes of several sizes (no contacts);
       - a wind table is interpolated linearly; errors name the entry;
+      - the exact integration (closed forms over the water frame's dry
+        polygons) against the sampled sums on random poses, and the frame
+        shared with the water's models;
       - 1 thread = 2 threads and restart = uninterrupted run, bit for bit,
         with wind (a turning table), buoyancy, drag and floe damping on.
 \*---------------------------------------------------------------------------*/
@@ -29,6 +32,7 @@ Description
 #include "hydro/Drag.H"
 #include "hydro/FloeDamping.H"
 #include "hydro/FlowVelocity.H"
+#include "hydro/WaterFrame.H"
 #include "hydro/Wind.H"
 #include "testWorlds.H"
 
@@ -306,9 +310,12 @@ TEST(Wind, forceAndMomentAreTheSumOfFacetForces)
     {
         for (const Vec3& Ua : winds)
         {
-            for (int sub : {0, 2})
+            for (int sub : {-1, 0, 2})
             {
-                ws.subdivision = sub;
+                // -1: the exact integration (default), else sampled
+                ws.integration =
+                    sub < 0 ? DragIntegration::exact : DragIntegration::sampled;
+                ws.subdivision = std::max(sub, 0);
                 // No dilation: the core is the outer polyhedron
                 WindWorld ww(1e-3, Vec3::Zero());
                 const int shape = ww.world->addShape
@@ -674,6 +681,7 @@ TEST(Wind, samplingOfASpinningFloeConverges)
     auto load = [&](int sub, Vec3& F, Vec3& M)
     {
         WindSettings ws;
+        ws.integration = DragIntegration::sampled;
         ws.subdivision = sub;
         WindWorld ww(1e-3, Vec3::Zero());
         const int shape = ww.world->addShape
@@ -720,4 +728,213 @@ TEST(Wind, samplingOfASpinningFloeConverges)
     const int def = WindSettings().subdivision;
     EXPECT_LT(eF[def], 1e-4);
     EXPECT_LT(eM[def], 0.02);
+}
+
+
+TEST(Wind, exactAgreesWithSampledOnRandomPoses)
+{
+    // The closed forms (integration exact: the frame's dry polygons, the
+    // drag's addFacetDrag) against the sampled sums on random poses of box
+    // floes (nearly level, or any attitude: on edge, mostly in the air),
+    // random drift, spin and wind. The form drag of the freeboard is exact,
+    // so the sampled sums converge to it at the rate h^2 (a factor about 4
+    // per subdivision); the skin drag of the top against the Richardson
+    // limit (4 S_4 - S_3)/3 of the sampled sums. Relative error of
+    // force + moment/size.
+    const SingleThread oneThread;
+    std::mt19937 gen(61);
+    std::uniform_real_distribution<double> U(-1, 1);
+
+    constexpr int nSub = DragSettings::maxSubdivision + 1;
+    double formSq[nSub] = {}, skinSq[nSub] = {}, formMax[nSub] = {},
+        skinMax[nSub] = {};
+    double exactSq = 0, exactMax = 0;
+    int nPoses = 0;
+
+    for (int trial = 0; trial < 200; ++trial)
+    {
+        WindWorld ww(1e-3, Vec3::Zero());
+        const double Lx = 2 + 3*std::abs(U(gen));
+        const double Ly = 2 + 3*std::abs(U(gen));
+        ww.addBox(Lx, Ly, 1, -0.5);
+        Body& b = ww.world->bodies()[0];
+        const Mat3 R = trial % 2
+            ? Mat3(Eigen::AngleAxisd
+              (
+                  0.15*U(gen), Vec3(U(gen), U(gen), 0.2*U(gen)).normalized()
+              ).toRotationMatrix())
+            : Mat3(Eigen::AngleAxisd
+              (
+                  M_PI*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+              ).toRotationMatrix());
+        b.q = Quat(R);
+        b.x = Vec3(10*U(gen), 10*U(gen), 0.6*U(gen));
+        b.v = Vec3(0.5*U(gen), 0.5*U(gen), 0.1*U(gen));
+        // Spins from slow (the relative wind nearly uniform) to fast
+        const double spin = trial % 3 == 0 ? 2.0 : 0.3;
+        b.setOmega(Vec3(0.1*U(gen), 0.1*U(gen), spin*U(gen)));
+        const Vec3 Ua(20*U(gen), 20*U(gen), 0);
+        const double size = std::max(Lx, Ly);
+
+        auto wind = [&](bool form, DragIntegration integration, int sub,
+                        Vec3& F, Vec3& M)
+        {
+            WindSettings ws;
+            ws.formCoefficient = form ? 1.0 : 0.0;
+            ws.skinCoefficient = form ? 0.0 : 1.5e-3;
+            ws.integration = integration;
+            ws.subdivision = sub;
+            const Wind wd(WaterSettings{rhoWater, 0}, ws, WindHistory(Ua));
+            wd.bodyWind(*ww.world, 0, Ua, F, M);
+        };
+        auto error = [&](const Vec3& F, const Vec3& M,
+                         const Vec3& Fr, const Vec3& Mr)
+        {
+            const double scale = Fr.norm() + Mr.norm()/size;
+            return ((F - Fr).norm() + (M - Mr).norm()/size)/scale;
+        };
+
+        Vec3 Fe, Me, Se, SMe;
+        wind(true, DragIntegration::exact, 0, Fe, Me);
+        wind(false, DragIntegration::exact, 0, Se, SMe);
+        if (!(Fe.norm() > 0) || !(Se.norm() > 0))
+        {
+            continue;   // overwashed, nothing leading or no top in the air
+        }
+        ++nPoses;
+        Vec3 Fs[nSub], Ms[nSub], Ss[nSub], SMs[nSub];
+        for (int sub = 0; sub < nSub; ++sub)
+        {
+            wind(true, DragIntegration::sampled, sub, Fs[sub], Ms[sub]);
+            wind(false, DragIntegration::sampled, sub, Ss[sub], SMs[sub]);
+        }
+        const Vec3 Sr = (4*Ss[nSub - 1] - Ss[nSub - 2])/3;
+        const Vec3 SMr = (4*SMs[nSub - 1] - SMs[nSub - 2])/3;
+        for (int sub = 0; sub < nSub; ++sub)
+        {
+            const double ef = error(Fs[sub], Ms[sub], Fe, Me);
+            const double es = error(Ss[sub], SMs[sub], Sr, SMr);
+            formSq[sub] += ef*ef;
+            skinSq[sub] += es*es;
+            formMax[sub] = std::max(formMax[sub], ef);
+            skinMax[sub] = std::max(skinMax[sub], es);
+        }
+        const double e = error(Se, SMe, Sr, SMr);
+        exactSq += e*e;
+        exactMax = std::max(exactMax, e);
+    }
+
+    ASSERT_GT(nPoses, 100);
+    std::cout << "wind accuracy over " << nPoses << " random poses"
+              << " (relative error of force + moment/size, rms and max):\n";
+    double rms[nSub];
+    for (int sub = 0; sub < nSub; ++sub)
+    {
+        rms[sub] = std::sqrt(formSq[sub]/nPoses);
+        std::cout << "  sampled subdivision " << sub
+                  << ": form vs exact " << rms[sub] << " (max "
+                  << formMax[sub] << "), skin vs Richardson limit "
+                  << std::sqrt(skinSq[sub]/nPoses) << " (max " << skinMax[sub]
+                  << ")\n";
+    }
+    const double exactRms = std::sqrt(exactSq/nPoses);
+    std::cout << "  exact integration: skin vs Richardson limit " << exactRms
+              << " (max " << exactMax << ")" << std::endl;
+
+    // The sampled form drag converges to the closed form at the rate h^2
+    for (int sub = 1; sub < nSub; ++sub)
+    {
+        EXPECT_GT(rms[sub - 1]/rms[sub], 3.0) << "subdivision " << sub;
+    }
+    EXPECT_LT(rms[nSub - 1], 1e-3);
+    // The skin drag: the closed form within the Richardson limit's own
+    // error (of order the last correction, skinSq[4]/skinSq[3] ~ 1/16
+    // of subdivision 4's), far below the default sampling (subdivision 1)
+    EXPECT_LT(exactRms, 0.1*std::sqrt(skinSq[nSub - 1]/nPoses));
+    EXPECT_LT(exactMax, 0.1*skinMax[nSub - 1]);
+}
+
+
+TEST(Wind, exactSharesTheWaterFrame)
+{
+    // The wind's exact path reads the dry polygons of the same frame as
+    // buoyancy, drag and floe damping: called first (the frame computed for
+    // it) or after the drag has recomputed the frame (the slot held another
+    // floe's) it gives the same force bit for bit, and the
+    // dry polygons' area is the faces' area minus the wet polygons' area
+    // (the two sides of one clip) on random poses
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> U(-1, 1);
+    for (int trial = 0; trial < 50; ++trial)
+    {
+        WindWorld ww(1e-3, Vec3::Zero());
+        ww.addBox(4 + U(gen), 3 + U(gen), 1, -0.5);
+        // A second floe: its frame replaces the first one's in the slot
+        ww.addBox(3, 3, 1, -0.5, Vec3(50, 0, 0));
+        Body& b = ww.world->bodies()[0];
+        b.q = Quat(Eigen::AngleAxisd
+        (
+            (trial % 2 ? 0.2 : M_PI)*U(gen),
+            Vec3(U(gen), U(gen), U(gen)).normalized()
+        ));
+        b.x = Vec3(U(gen), U(gen), 0.8*U(gen));
+        b.setOmega(Vec3(0.1*U(gen), 0.1*U(gen), 0.5*U(gen)));
+        const Vec3 Ua(15, 5*U(gen), 0);
+        const WaterSettings water{rhoWater, 0};
+        const Wind wind(water, WindSettings(), WindHistory(Ua));
+        Vec3 F1, M1, F2, M2;
+        wind.bodyWind(*ww.world, 0, Ua, F1, M1);
+        // The frame as the water's models leave it (wet side first)
+        const Drag drag
+        (
+            water, DragSettings(), std::make_shared<UniformCurrent>(Vec3::Zero())
+        );
+        Vec3 Fd, Md;
+        drag.bodyDrag(*ww.world, 1, Fd, Md);
+        drag.bodyDrag(*ww.world, 0, Fd, Md);
+        wind.bodyWind(*ww.world, 0, Ua, F2, M2);
+        EXPECT_EQ(F1, F2);
+        EXPECT_EQ(M1, M2);
+
+        PolyhedronBuffer buf;
+        const PolyhedronView P = ww.world->shapeOf(0).outer(buf);
+        const WaterFrame& frame = waterFrame(*ww.world, 0, water.level);
+        ASSERT_TRUE(frameDry(P, frame));
+        auto area = [&](const Vec3* q, int m, const Vec3& n)
+        {
+            double a = 0;
+            for (int k = 1; k + 1 < m; ++k)
+            {
+                a += 0.5*((q[k] - q[0]).cross(q[k + 1] - q[0])).dot(n);
+            }
+            return a;
+        };
+        double total = 0, wet = 0, dry = 0;
+        for (int f = 0; f < int(P.faces().size()); ++f)
+        {
+            Vec3 q[SubmergedFace::maxVertices];
+            const int m = P.faces()[f].count;
+            for (int k = 0; k < m; ++k) q[k] = frame.r[P.faceVertex(f, k)];
+            total += area(q, m, frame.R*P.faces()[f].normal);
+        }
+        for (int k = 0; k < frame.nWet; ++k)
+        {
+            wet += area
+            (
+                frame.wetVertex + frame.wetBegin[k],
+                frame.wetBegin[k + 1] - frame.wetBegin[k],
+                frame.R*P.faces()[frame.wetFace[k]].normal
+            );
+        }
+        for (int k = 0; k < frame.nDry; ++k)
+        {
+            dry += area
+            (
+                frame.dryVertex + frame.dryBegin[k],
+                frame.dryBegin[k + 1] - frame.dryBegin[k],
+                frame.R*P.faces()[frame.dryFace[k]].normal
+            );
+        }
+        EXPECT_NEAR(wet + dry, total, 1e-12*total) << "trial " << trial;
+    }
 }

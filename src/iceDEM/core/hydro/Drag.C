@@ -274,6 +274,84 @@ bool skinIntegral
 }
 
 
+void addFacetDrag
+(
+    const Vec3* q,
+    int m,
+    const Vec3& nrm,
+    bool skin,
+    double coeff,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& F,
+    Vec3& M
+)
+{
+    if (skin)
+    {
+        // Skin drag |u_t| u_t: not a polynomial, but in closed form for a
+        // rigid-body field (skinIntegral)
+        Vec3 I, Ir;
+        if (skinIntegral(q, m, nrm, w, omega, I, Ir))
+        {
+            F -= coeff*I;
+            M -= coeff*Ir;
+        }
+        return;
+    }
+
+    // Form drag where the facet leads: u_n = (w + omega x r).n is linear,
+    // so the leading part is the polygon clipped at u_n = 0 and
+    // int u_n^2 dA, int r u_n^2 dA are exact on its fan triangles: with
+    // vertex values f_i, S = sum f_i, Q = sum_{i<=j} f_i f_j,
+    // int lambda_i f^2 dA = A/30 (Q + f_i (f_i + S)) (barycentric lambda_i)
+    constexpr int cap = SubmergedFace::maxVertices + 1;
+    double s[cap];
+    Vec3 lead[cap + 1];
+    double sl[cap + 1];
+    int nLead = 0;
+    for (int k = 0; k < m; ++k)
+    {
+        s[k] = -(w + omega.cross(q[k])).dot(nrm);
+        nLead += s[k] < 0;
+    }
+    if (nLead == 0)
+    {
+        return;
+    }
+    // Leading everywhere: the polygon itself
+    int ml = m;
+    const Vec3* lp = q;
+    const double* ls = s;
+    if (nLead < m)
+    {
+        ml = clipNegative(q, s, m, lead, sl);
+        lp = lead;
+        ls = sl;
+    }
+    double I = 0;
+    Vec3 Ir = Vec3::Zero();
+    for (int k = 1; k + 1 < ml; ++k)
+    {
+        const Vec3& a = lp[0];
+        const Vec3& bb = lp[k];
+        const Vec3& c = lp[k + 1];
+        const double A = 0.5*((bb - a).cross(c - a)).dot(nrm);
+        const double fa = -ls[0], fb = -ls[k], fc = -ls[k + 1];
+        const double S = fa + fb + fc;
+        const double Q =
+            fa*fa + fb*fb + fc*fc + fa*fb + fb*fc + fc*fa;
+        const double wa = A/30.0*(Q + fa*(fa + S));
+        const double wb = A/30.0*(Q + fb*(fb + S));
+        const double wc = A/30.0*(Q + fc*(fc + S));
+        I += wa + wb + wc;
+        Ir += wa*a + wb*bb + wc*c;
+    }
+    F -= (coeff*I)*nrm;
+    M -= coeff*Ir.cross(nrm);
+}
+
+
 DragIntegration dragIntegrationFromName(const std::string& name)
 {
     if (name == "exact") return DragIntegration::exact;
@@ -548,11 +626,6 @@ void Drag::frameDrag
     const Vec3 w = b.v - current;
     const double halfRho = 0.5*water_.density;
 
-    constexpr int cap = SubmergedFace::maxVertices + 1;
-    double s[cap];
-    Vec3 lead[cap + 1];
-    double sl[cap + 1];
-
     // The wet polygons (vertices relative to the centroid)
     for (int wf = 0; wf < frame.nWet; ++wf)
     {
@@ -569,67 +642,7 @@ void Drag::frameDrag
         {
             continue;
         }
-
-        if (!skin)
-        {
-            // Form drag where the facet leads: u_n = (w + omega x r).n is
-            // linear, so the leading part is the polygon clipped at
-            // u_n = 0 and int u_n^2 dA, int r u_n^2 dA are exact on its fan
-            // triangles: with vertex values f_i, S = sum f_i,
-            // Q = sum_{i<=j} f_i f_j, int lambda_i f^2 dA = A/30 (Q +
-            // f_i (f_i + S)) (barycentric lambda_i)
-            int nLead = 0;
-            for (int k = 0; k < m; ++k)
-            {
-                s[k] = -(w + omega.cross(q[k])).dot(nrm);
-                nLead += s[k] < 0;
-            }
-            if (nLead == 0)
-            {
-                continue;
-            }
-            // Leading everywhere: the wet polygon itself
-            int ml = m;
-            const Vec3* lp = q;
-            const double* ls = s;
-            if (nLead < m)
-            {
-                ml = clipNegative(q, s, m, lead, sl);
-                lp = lead;
-                ls = sl;
-            }
-            double I = 0;
-            Vec3 Ir = Vec3::Zero();
-            for (int k = 1; k + 1 < ml; ++k)
-            {
-                const Vec3& a = lp[0];
-                const Vec3& bb = lp[k];
-                const Vec3& c = lp[k + 1];
-                const double A = 0.5*((bb - a).cross(c - a)).dot(nrm);
-                const double fa = -ls[0], fb = -ls[k], fc = -ls[k + 1];
-                const double S = fa + fb + fc;
-                const double Q =
-                    fa*fa + fb*fb + fc*fc + fa*fb + fb*fc + fc*fa;
-                const double wa = A/30.0*(Q + fa*(fa + S));
-                const double wb = A/30.0*(Q + fb*(fb + S));
-                const double wc = A/30.0*(Q + fc*(fc + S));
-                I += wa + wb + wc;
-                Ir += wa*a + wb*bb + wc*c;
-            }
-            F -= (coeff*I)*nrm;
-            M -= coeff*Ir.cross(nrm);
-        }
-        else
-        {
-            // Skin drag |u_t| u_t: not a polynomial, but in closed form
-            // for a rigid-body field (skinIntegral)
-            Vec3 I, Ir;
-            if (skinIntegral(q, m, nrm, w, omega, I, Ir))
-            {
-                F -= coeff*I;
-                M -= coeff*Ir;
-            }
-        }
+        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
     }
 }
 

@@ -128,6 +128,42 @@ Waterplane waterplane(const WaterFrame& frame)
 }
 
 
+Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
+{
+    if (!frame.valid())
+    {
+        return waterplane(P, frame.R, frame.x, frame.level);
+    }
+    frameVolume(P, frame);
+    const int bottom = frame.prismBottom;
+    if (bottom < 0)
+    {
+        return waterplane(frame);
+    }
+
+    // The lower cap's vertices r (heights h < 0) moved along the prism's
+    // axis a (up, world) to the plane: l = r - h/a_z a. The cap's order
+    // (counter-clockwise from below) is the lid's as the wet faces close
+    // it, so WaterplaneSums takes the polygon as it is.
+    constexpr int cap = SubmergedFace::maxVertices;
+    const Vec3 a = -(frame.R*P.faces()[bottom].normal);
+    const double invAz = 1/a.z();
+    const int n = P.faces()[bottom].count;
+    Vec3 l[cap];
+    for (int k = 0; k < n; ++k)
+    {
+        const int v = P.faceVertex(bottom, k);
+        l[k] = frame.r[v] - (frame.h[v]*invAz)*a;
+    }
+    WaterplaneSums sums;
+    for (int k = 1; k + 1 < n; ++k)
+    {
+        sums.addTriangle(l[0], l[k], l[k + 1]);
+    }
+    return sums.waterplane(frame.x, frame.level);
+}
+
+
 FloeDamping::FloeDamping
 (
     const WaterSettings& water,
@@ -161,10 +197,7 @@ Vec3 FloeDamping::coefficients(const World& world, int i) const
     const WaterFrame& frame = waterFrame(world, i, water_.level);
     const Mat3& R = frame.R;
 
-    const Waterplane wp =
-        frame.valid()
-      ? waterplane(frame)
-      : waterplane(P, R, b.x, water_.level);
+    const Waterplane wp = waterplane(P, frame);
     if (wp.area == 0) return c;
 
     const double k3 = rhoG*wp.area;

@@ -21,6 +21,7 @@ void computeWaterFrame
 )
 {
     frame.hasVolume = false;
+    frame.hasDry = false;
     frame.nWet = 0;
     frame.wetBegin[0] = 0;
     frame.R = R;
@@ -155,6 +156,7 @@ const SubmergedVolume& frameVolume
     }
     SubmergedVolume& result = frame.volume;
     frame.hasVolume = true;
+    frame.prismBottom = -1;
 
     // As submergedVolume: the truncated prism, else the wet polygons; the
     // tetrahedra where the sums would cancel (entirely below); polyhedra
@@ -181,6 +183,7 @@ const SubmergedVolume& frameVolume
     const int bottom = truncatedPrismBottom(P, frame.R, frame.h);
     if (bottom >= 0)
     {
+        frame.prismBottom = bottom;
         result = truncatedPrismVolume
         (
             P, frame.R, frame.r, frame.h, bottom, frame.x
@@ -198,6 +201,80 @@ const SubmergedVolume& frameVolume
     }
     result = sums.result(frame.x, frame.x.z() - frame.level);
     return result;
+}
+
+bool frameDry
+(
+    const PolyhedronView& P,
+    const WaterFrame& frame
+)
+{
+    if (frame.hasDry)
+    {
+        return frame.dryValid;
+    }
+    frame.hasDry = true;
+    frame.dryValid = false;
+    frame.nDry = 0;
+    frame.dryBegin[0] = 0;
+    if (!frame.valid())
+    {
+        return false;
+    }
+    if (!frame.dry())
+    {
+        frame.dryValid = true;
+        return true;
+    }
+
+    // As the wet side, with -h: vertices with h = 0 count as below
+    constexpr int cap = SubmergedFace::maxVertices;
+    Vec3 p[cap];
+    double s[cap];
+    double sOut[cap];
+    int end = 0;
+    const int nf = static_cast<int>(P.faces().size());
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        if (n + 1 > cap)
+        {
+            frame.nDry = 0;
+            return false;
+        }
+        int nAbove = 0;
+        for (int k = 0; k < n; ++k)
+        {
+            const int v = P.faceVertex(f, k);
+            p[k] = frame.r[v];
+            s[k] = -frame.h[v];
+            nAbove += s[k] < 0;
+        }
+        if (nAbove == 0)
+        {
+            continue;
+        }
+        Vec3* q = frame.dryVertex + end;
+        int m = n;
+        if (nAbove == n)
+        {
+            // A face entirely above is its own dry polygon
+            for (int k = 0; k < n; ++k)
+            {
+                q[k] = p[k];
+            }
+        }
+        else
+        {
+            m = clipNegative(p, s, n, q, sOut);
+            if (m == 0) continue;
+        }
+        end += m;
+        frame.dryFace[frame.nDry] = f;
+        frame.dryBegin[++frame.nDry] = end;
+    }
+    frame.dryValid = true;
+    return true;
 }
 
 } // namespace iceDEM

@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "Wind.H"
+#include "WaterFrame.H"
 
 #include <cmath>
 #include <string>
@@ -177,6 +178,17 @@ void Wind::bodyWind
     const Mat3 R = b.rotation();
     const Vec3 omega = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
 
+    if (settings_.integration == DragIntegration::exact)
+    {
+        // The floe's frame, shared with buoyancy, drag and floe damping
+        const WaterFrame& frame = waterFrame(world, i, level_);
+        if (frameDry(P, frame))
+        {
+            frameWind(P, frame, b, omega, Ua, F, M);
+            return;
+        }
+    }
+
     // Nothing above the water plane (overwashed): no wind
     {
         const Vec3 up = R.row(2).transpose();
@@ -240,6 +252,46 @@ void Wind::bodyWind
                 M += r.cross(dF);
             }
         }
+    }
+}
+
+
+void Wind::frameWind
+(
+    const PolyhedronView& P,
+    const WaterFrame& frame,
+    const Body& b,
+    const Vec3& omega,
+    const Vec3& Ua,
+    Vec3& F,
+    Vec3& M
+) const
+{
+    F.setZero();
+    M.setZero();
+    if (!frame.dry())
+    {
+        return;
+    }
+
+    // Velocity relative to the air: w + omega x r, linear over a face
+    const Vec3 w = b.v - Ua;
+    const double rho = settings_.rhoAir;
+
+    // The dry polygons (vertices relative to the centroid)
+    for (int k = 0; k < frame.nDry; ++k)
+    {
+        const Vec3* q = frame.dryVertex + frame.dryBegin[k];
+        const int m = frame.dryBegin[k + 1] - frame.dryBegin[k];
+        const Vec3 nrm = frame.R*P.faces()[frame.dryFace[k]].normal;
+        const bool skin = std::abs(nrm.z()) >= settings_.topCosine;
+        // Bulk skin formula without 1/2; form drag with 1/2
+        const double coeff =
+            skin
+          ? rho*settings_.skinCoefficient
+          : 0.5*rho*settings_.formCoefficient;
+        if (coeff == 0) continue;
+        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
     }
 }
 

@@ -96,6 +96,13 @@ void addWind
             << "Entry 'topCosine' is " << s.topCosine
             << ": it must lie in (0, 1]" << nl << exit(FatalIOError);
     }
+    if (d.found("integration"))
+    {
+        s.integration = ::iceDEM::dragIntegrationFromName
+        (
+            selectName(d, "integration", wordList({"exact", "sampled"}))
+        );
+    }
     world.addForceModel
     (
         coreCall
