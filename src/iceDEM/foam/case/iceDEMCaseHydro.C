@@ -103,6 +103,19 @@ void addWind
             selectName(d, "integration", wordList({"exact", "sampled"}))
         );
     }
+    if
+    (
+        s.integration == ::iceDEM::DragIntegration::exact
+     && d.found("subdivision", keyType::LITERAL)
+    )
+    {
+        // A wind has no type to switch to that would use it (unlike the
+        // drag's empirical/resolved): say that it does nothing
+        IOWarningInFunction(d)
+            << "Entry 'subdivision' has no effect with 'integration exact'"
+            << " (the default): it sets the sample points of"
+            << " 'integration sampled'" << endl;
+    }
     world.addForceModel
     (
         coreCall
