@@ -493,18 +493,37 @@ void Foam::functionObjects::iceLoadStatistics::checkStop()
     const size_t n = t_.size() - start;
     const BatchMeansResult b =
         batchMeans(Fh_.data() + start, n, batches_, confidence_);
+
+    // Correlated batch means understate the interval: for an AR(1)
+    // sequence of batch means with lag-1 correlation rho the variance of
+    // their mean grows by (1 + rho)/(1 - rho). The stop compares the
+    // half-width widened by its square root (a pack that has come to rest
+    // has correlated batch means of a vanishing spread, and stops)
+    scalar widened = b.halfWidth;
+    if (b.correlated)
+    {
+        widened =
+            b.lag1 < 1
+          ? b.halfWidth*std::sqrt((1 + b.lag1)/(1 - b.lag1))
+          : GREAT;
+    }
     if
     (
         steady
      && b.batches
      && label(b.batchSize) >= minBatchSize_
-     && !b.correlated
      && b.mean > 0
-     && b.halfWidth <= stopFraction_*b.mean
+     && widened <= stopFraction_*b.mean
     )
     {
         Info<< type() << ' ' << name() << ": half-width " << b.halfWidth
-            << " N <= " << stopFraction_ << " x mean " << b.mean
+            << " N";
+        if (b.correlated)
+        {
+            Info<< " (batch means correlated, lag-1 " << b.lag1
+                << ": widened to " << widened << " N)";
+        }
+        Info<< " <= " << stopFraction_ << " x mean " << b.mean
             << " N: writing and stopping at time " << time_.timeName()
             << endl;
         writeStatistics();
