@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -324,15 +325,16 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // sphere's shell, E = 1e9 Pa, 5 s each): 40 seeds, about 2,000 impacts.
 // Disabled: it still fails (see README.md, known limits). Old windows: 17
 // of the 37 pairs (three seeds draw a degenerate hull) had an impact above
-// the bound, the worst +202 %; with the bands: 5 of 37 (2,048 impacts),
-// 1.7e-4 to 5.7e-2, all where two corners of a shrinking patch merge (the
-// others keep every impact within 2.2e-5): a band crossing reaching the
-// end of its edge next to a vertex-face corner (seed 36), a vertex-face
-// corner inside its band reaching its face's side next to a crossing (seeds
-// 4, 37), two crossings of one edge with the two sides of a face meeting at
-// the face's corner (seed 40), a nearly parallel crossing leaving its wedge
-// (seed 39). Run it with --gtest_also_run_disabled_tests (about 10 s of
-// CPU)
+// the bound, the worst +202 %; with the bands: 5 of 37, 1.7e-4 to 5.7e-2,
+// where two corners of a shrinking patch merge; with the merge partition
+// (narrowPhaseMerge.H) and the band for nearly parallel crossings: 2 of 37
+// (2,082 impacts), the others keeping every impact within 5.6e-5: seed 19,
+// 8.9e-4 (a crossing appearing beside a vertex-face corner, both in their
+// tolerance bands: the union of their weights changes), and seed 39,
+// 2.0e-4 (a nearly parallel crossing fading across its band in about four
+// steps, its normal turning as 1/sin; 2.1e-2 before, when it ended with
+// its full weight at the wedge). Run it with
+// --gtest_also_run_disabled_tests (about 10 s of CPU)
 TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
     int impacts = 0;
@@ -425,6 +427,9 @@ struct ForceSweep
 {
     std::vector<double> F;                  //!< |F| at each pose
     std::vector<std::vector<int>> types;    //!< sorted feature-pair types
+    std::vector<Vec3> force;                //!< total contact force on B
+    std::vector<Vec3> moment;               //!< its moment about B's centroid
+    double radiusB = 0;                     //!< B's bounding radius
 };
 
 ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double overlap)
@@ -497,7 +502,12 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
         place(q, hi);
         r.F.push_back(F.norm());
         r.types.push_back(types);
+        // Totals of the step's force evaluation: the contacts only (no
+        // gravity, no walls), couples of weighted contacts included
+        r.force.push_back(w.bodies()[1].force);
+        r.moment.push_back(w.bodies()[1].torque);
     }
+    r.radiusB = w.shapes()[sb].boundingRadius();
     return r;
 }
 
@@ -510,11 +520,8 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
 // jumps where a contact is handed over, by design. Five random hull pairs,
 // 1440 poses per turn, overlap 5e-3 (5 % of r_A + r_B): the jump of
 // |F_hertz|/|F_hertzSimplified| at the same poses isolates R*'s part (the
-// raw jumps of |F| are printed too: hertzSimplified's, up to 0.485, are the
-// geometry's own: the two that stay when the poses are doubled (0.485 and
-// 0.319 at seeds 108 and 101) are two crossings of one edge with two sides
-// of a face merging at the face's corner, see README.md, known limits; so
-// hertzSimplified's continuity is not asserted yet)
+// raw jumps of |F| are printed too; hertzSimplified's own continuity is
+// asserted by hertzSimplifiedForceAndMomentAreContinuous)
 TEST(handover, hertzForceJumpAtHandOverIsBounded)
 {
     const int poses = std::getenv("SWEEP_POSES") ? std::atoi(std::getenv("SWEEP_POSES")) : 1440;
@@ -590,6 +597,74 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
 }
 
 
+// hertzSimplified (one R* for every feature pair): the total contact force
+// on B and its moment about B's centroid are continuous through every
+// hand-over and merge the sweep passes (five random hull pairs, B turned
+// once at a held deepest overlap of 5 % of r_A + r_B, the sweep of
+// hertzForceJumpAtHandOverIsBounded). A jump (a contact lost while loaded,
+// one counted twice, two corners merging into one) keeps its size when the
+// poses are doubled; a continuous change halves. The sweep runs at 5760
+// poses, the even ones being the 2880-pose sweep (same poses, bit for bit):
+// for each pair the largest step between consecutive poses (|dF|/|F|,
+// |dM|/(|F| R_B)) must fall below 0.7 of that at 2880 poses (measured: at
+// most 0.62). Without the merge partition (narrowPhaseMerge.H) two pairs
+// keep steps of 32 % and 47 % of |F| (seeds 101 and 108: an edge crossing
+// two sides of a face next to its corner; ratio 0.999). At 2880 poses a
+// steep but continuous change of the share power (seed 107's moment) is
+// not yet resolved (ratio 0.88, 0.51 at 11,520). Known remainder: at
+// 11,520 poses one step of 3.8 % of |F| at seed 108 does not halve
+// (README, known limits)
+TEST(handover, hertzSimplifiedForceAndMomentAreContinuous)
+{
+    const int poses = std::getenv("SWEEP_POSES") ? 2*std::atoi(std::getenv("SWEEP_POSES")) : 5760;
+    int pairs = 0, handOvers = 0;
+    double worstRatio = 0;
+    for (unsigned seed = 101; pairs < 5; ++seed)
+    {
+        ForceSweep r;
+        try
+        {
+            r = forceSweep(seed, "hertzSimplified", poses, 5e-3);
+        }
+        catch (const Error&)
+        {
+            continue;   // a hull with a vertex on another's face
+        }
+        ++pairs;
+        // Largest relative steps of F and M, every pose (stride 1) or every
+        // other one (stride 2)
+        auto largest = [&](int stride, double& f, double& m)
+        {
+            f = m = 0;
+            for (int k = stride; k <= poses; k += stride)
+            {
+                const double scale = std::max(r.F[k], r.F[k - stride]);
+                ASSERT_GT(scale, 0) << "seed " << seed << ": no contact at pose " << k;
+                f = std::max(f, (r.force[k] - r.force[k - stride]).norm()/scale);
+                m = std::max(m, (r.moment[k] - r.moment[k - stride]).norm()/(scale*r.radiusB));
+            }
+        };
+        double f1, m1, f2, m2;
+        largest(1, f1, m1);
+        largest(2, f2, m2);
+        int n = 0;
+        for (int k = 1; k <= poses; ++k) n += r.types[k] != r.types[k - 1];
+        handOvers += n;
+        std::printf
+        (
+            "seed %u: %d hand-overs; largest step of F %.3g (%d poses: %.3g),"
+            " of M %.3g (%.3g)\n",
+            seed, n, f1, poses/2, f2, m1, m2
+        );
+        EXPECT_LT(f1, 0.7*f2) << "seed " << seed << ": a jump of the force";
+        EXPECT_LT(m1, 0.7*m2) << "seed " << seed << ": a jump of the moment";
+        worstRatio = std::max(worstRatio, std::max(f1/f2, m1/m2));
+    }
+    std::printf("%d hand-overs; largest ratio of the steps (%d/%d poses) %.3g\n", handOvers, poses, poses/2, worstRatio);
+    EXPECT_GE(handOvers, 50);
+}
+
+
 // The random-shape energy battery (broadPairInABox): 40 random pairs of
 // hulls of clouds of 4 to 20 points, random radii, mass ratios, poses and
 // velocities, e = 1, mu = 0, hertzSimplified, colliding with each other and
@@ -598,9 +673,9 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
 // included) must keep the total energy within impactBound, each pair's
 // drift below 5e-3, and no overlap may reach half the smaller radius (the
 // model's range; Young's modulus is chosen for that, see broadPairInABox).
-// Measured (1 thread): 40 pairs, 1,393 impacts, the worst impact 1.5e-6 of
-// the total energy, the worst drift 2.2e-6, overlaps up to 0.49 r; about 30
-// s of CPU. Before the vertex-edge band (vertexEdgeBandWeight) one pair
+// Measured (1 thread, with the merge partition): 40 pairs, 1,413 impacts,
+// the worst impact 9.8e-7 of the total energy, the worst drift 3.1e-6,
+// overlaps up to 0.33 r; about 30 s of CPU. Before the vertex-edge band (vertexEdgeBandWeight) one pair
 // (seed 6) changed the energy by 14 % in one impact: a vertex at the
 // shallow end of an edge lying along another edge appeared with its full
 // overlap as the two edges' sine fell below parallelEdgeSin
@@ -725,4 +800,134 @@ TEST(handover, vertexEdgeBandWeightGradientMatchesFiniteDifferences)
         EXPECT_LT((c.g.weightGradientX - gx).norm(), 1e-5*gx.norm());
         EXPECT_LT((c.g.weightGradient - gphi).norm(), 1e-5*(gphi.norm() + gx.norm()));
     }
+}
+
+
+// The weights of weighted contacts (tolerance bands and the merge
+// partition) must have the gradients the narrow phase gives them (the
+// forces are minus the potential's gradient only then). Random hull pairs
+// at a held overlap, central differences for B moved and turned about the
+// contact's point, every contact of weight below 1 found at all twelve
+// perturbed poses
+TEST(handover, weightGradientsMatchFiniteDifferences)
+{
+    int checked = 0, shared = 0;
+    double worst = 0;
+    for (unsigned seed = 201; seed <= 230; ++seed)
+    {
+        // Shallow and deep: the deep poses have patches of several corners
+        const double overlap = seed % 2 ? 5e-3 : 2e-2;
+        std::mt19937_64 rng(seed);
+        std::unique_ptr<DilatedShape> pa, pb;
+        try
+        {
+            pa = std::make_unique<DilatedShape>(randomHull(rng, 7, 0.5), 0.05);
+            pb = std::make_unique<DilatedShape>(randomHull(rng, 10, 0.6), 0.05);
+        }
+        catch (const Error&)
+        {
+            continue;   // a hull with a vertex on another's face
+        }
+        const DilatedShape& SA = *pa;
+        const DilatedShape& SB = *pb;
+        std::uniform_real_distribution<double> u(-1, 1);
+        for (int pose = 0; pose < 60; ++pose)
+        {
+            const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+            const Mat3 R0 = Quat(Eigen::AngleAxisd(3*u(rng), Vec3(u(rng), u(rng), u(rng)).normalized())).toRotationMatrix();
+            std::vector<Vec3> va, vb;
+            for (const Vec3& p : SA.core().vertices()) va.push_back(p);
+            const BodyView A{&SA, va.data(), Mat3::Identity(), Vec3::Zero(), Quat::Identity()};
+            auto find = [&](const Mat3& turn, const Vec3& about, const Vec3& x, FoundContact* out)
+            {
+                const Mat3 R = turn*R0;
+                const Vec3 c = about + turn*(x - about);
+                vb.clear();
+                for (const Vec3& p : SB.core().vertices()) vb.push_back(R*p + c);
+                const BodyView B{&SB, vb.data(), R, c, Quat(R)};
+                Vec3 axis = Vec3::Zero();
+                return findContacts(A, B, NarrowPhaseSettings{}, axis, out, 16);
+            };
+            FoundContact found[16];
+            // Bisection on the distance along dir to a deepest overlap of 5e-3
+            double lo = 0, hi = 3;
+            for (int it = 0; it < 50; ++it)
+            {
+                const double mid = 0.5*(lo + hi);
+                const int n = find(Mat3::Identity(), Vec3::Zero(), mid*dir, found);
+                double deepest = 0;
+                for (int k = 0; k < n; ++k) deepest = std::max(deepest, found[k].g.overlap);
+                (deepest > overlap || (n == 0 && mid < 0.3) ? lo : hi) = mid;
+            }
+            const Vec3 x = hi*dir;
+            const int n = find(Mat3::Identity(), Vec3::Zero(), x, found);
+            for (int k = 0; k < n; ++k)
+            {
+                const FoundContact c = found[k];
+                if (!(c.g.weight < 1 - 1e-12)) continue;
+                const double h = 1e-7;
+                Vec3 gx, gphi;
+                bool ok = true;
+                auto weightAt = [&](const Mat3& turn, const Vec3& dx)
+                {
+                    FoundContact other[16];
+                    const int m = find(turn, c.g.point, x + dx, other);
+                    for (int j = 0; j < m; ++j)
+                    {
+                        if (other[j].featureA == c.featureA && other[j].featureB == c.featureB)
+                        {
+                            return other[j].g.weight;
+                        }
+                    }
+                    ok = false;
+                    return 0.0;
+                };
+                for (int d = 0; d < 3; ++d)
+                {
+                    const Vec3 e = h*Vec3::Unit(d);
+                    gx(d) = (weightAt(Mat3::Identity(), e) - weightAt(Mat3::Identity(), -e))/(2*h);
+                    const Mat3 tp(Eigen::AngleAxisd(h, Vec3::Unit(d)));
+                    const Mat3 tm(Eigen::AngleAxisd(-h, Vec3::Unit(d)));
+                    gphi(d) = (weightAt(tp, Vec3::Zero()) - weightAt(tm, Vec3::Zero()))/(2*h);
+                }
+                if (!ok) continue;
+                ++checked;
+                // Sharing its weight: another contact within L = r_A + r_B
+                // (equal radii: the midpoints are the contacts' points)
+                for (int j = 0; j < n; ++j)
+                {
+                    if (j != k && (found[j].g.point - c.g.point).norm() < 0.1)
+                    {
+                        ++shared;
+                        break;
+                    }
+                }
+                const double scale = 1 + gx.norm()*0.05 + gphi.norm();
+                const double err =
+                    std::max((c.g.weightGradientX - gx).norm()*0.05, (c.g.weightGradient - gphi).norm())/scale;
+                if (err > 1e-4)
+                {
+                    std::printf
+                    (
+                        "seed %u pose %d: %s w %.6f: dw/dx (%.5g %.5g %.5g) vs (%.5g %.5g %.5g),"
+                        " dw/dphi (%.5g %.5g %.5g) vs (%.5g %.5g %.5g)\n",
+                        seed, pose, featurePairName(c.g.type), c.g.weight,
+                        c.g.weightGradientX.x(), c.g.weightGradientX.y(), c.g.weightGradientX.z(),
+                        gx.x(), gx.y(), gx.z(),
+                        c.g.weightGradient.x(), c.g.weightGradient.y(), c.g.weightGradient.z(),
+                        gphi.x(), gphi.y(), gphi.z()
+                    );
+                }
+                worst = std::max(worst, err);
+            }
+        }
+    }
+    std::printf
+    (
+        "%d weighted contacts checked (%d sharing their weight), worst relative error %.3g\n",
+        checked, shared, worst
+    );
+    EXPECT_GE(checked, 20);
+    EXPECT_GE(shared, 10);
+    EXPECT_LT(worst, 1e-4);
 }

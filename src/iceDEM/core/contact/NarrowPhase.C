@@ -5,6 +5,7 @@
 
 #include "NarrowPhase.H"
 #include "pairSearch.H"
+#include "narrowPhaseMerge.H"
 
 #include <algorithm>
 #include <limits>
@@ -279,6 +280,10 @@ int findContacts
             }
         }
     }
+
+    // Corners of a patch near each other share their weight (the merge
+    // partition, narrowPhaseMerge.H)
+    partitionMerges(out, col.n, SA.radius(), SB.radius());
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
