@@ -24,6 +24,7 @@ Description
 #include "hydro/Buoyancy.H"
 #include "hydro/Drag.H"
 #include "hydro/FlowVelocity.H"
+#include "hydroFixtures.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -40,27 +41,20 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using test::hydro::g;
+using test::hydro::radius;
+using test::hydro::rhoIce;
+using test::hydro::rhoWater;
+using test::hydro::expectError;
+using test::hydro::SingleThread;
 
 //- World with square-ish box floes Lx x Ly x h (true size) with their
-//  bottom at zb. No contacts happen: a soft material keeps the time-step
-//  check (Hertz contact time) out of the way of long steps.
+//  bottom at zb (test::hydro::BoxWorld: soft ice, no contacts happen)
 struct DragWorld
+:
+    test::hydro::BoxWorld
 {
-    std::unique_ptr<World> world;
-    int ice = -1;
-
-    DragWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
-    {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = gravity;
-        world = std::make_unique<World>(ws);
-        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
-    }
+    using BoxWorld::BoxWorld;
 
     int addFloe
     (
@@ -73,22 +67,7 @@ struct DragWorld
         const Vec3& omega = Vec3::Zero()
     )
     {
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
-        (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius,
-                    h - 2*radius
-                ),
-                radius
-            )
-        );
-        return world->addBody(shape, ice, centre, Quat::Identity(), v, omega);
+        return addBox(Lx, Ly, h, zb, centre, Quat::Identity(), v, omega);
     }
 
     void addWater(const DragSettings& ds, const Vec3& current)
@@ -103,34 +82,6 @@ struct DragWorld
             )
         );
     }
-
-    const Body& body(int i) const { return world->bodies()[i]; }
-};
-
-//- Expect an Error naming 'entry' from f()
-template<class F>
-void expectError(F f, const std::string& entry)
-{
-    try
-    {
-        f();
-        ADD_FAILURE() << "no Error (entry " << entry << ")";
-    }
-    catch (const Error& e)
-    {
-        EXPECT_EQ(e.entry(), entry) << e.what();
-    }
-}
-
-//- One OpenMP thread for the long single-floe runs: with one body there
-//  is nothing to share, and on a busy machine the barriers of a second
-//  thread would dominate the run time (thread independence is tested in
-//  Drag.independentOfThreadCount)
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
 };
 
 } // anonymous namespace

@@ -34,6 +34,7 @@ Description
 #include "hydro/FlowVelocity.H"
 #include "hydro/WaterFrame.H"
 #include "hydro/Wind.H"
+#include "hydroFixtures.H"
 #include "testWorlds.H"
 
 #include <gtest/gtest.h>
@@ -50,26 +51,20 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using test::hydro::g;
+using test::hydro::radius;
+using test::hydro::rhoIce;
+using test::hydro::rhoWater;
+using test::hydro::expectError;
+using test::hydro::SingleThread;
 
 //- World of prism floes (true size: the outer polyhedron is the prism of
 //  the given polygon, bottom zb, height h)
 struct WindWorld
+:
+    test::hydro::BoxWorld
 {
-    std::unique_ptr<World> world;
-    int ice = -1;
-
-    explicit WindWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
-    {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = gravity;
-        world = std::make_unique<World>(ws);
-        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
-    }
+    using BoxWorld::BoxWorld;
 
     //- Box Lx x Ly x h with its bottom at zb
     int addBox
@@ -79,21 +74,10 @@ struct WindWorld
         const Vec3& v = Vec3::Zero()
     )
     {
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
+        return BoxWorld::addBox
         (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius, h - 2*radius
-                ),
-                radius
-            )
+            Lx, Ly, h, zb, centre, Quat::Identity(), v, Vec3::Zero()
         );
-        return world->addBody(shape, ice, centre, Quat::Identity(), v);
     }
 
     void addWater
@@ -122,29 +106,6 @@ struct WindWorld
             );
         }
     }
-
-    const Body& body(int i) const { return world->bodies()[i]; }
-};
-
-template<class F>
-void expectError(F f, const std::string& entry)
-{
-    try
-    {
-        f();
-        ADD_FAILURE() << "no Error (entry " << entry << ")";
-    }
-    catch (const Error& e)
-    {
-        EXPECT_EQ(e.entry(), entry) << e.what();
-    }
-}
-
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
 };
 
 //- Analytic free-drift speed of a square floe L x L x h at its draft
