@@ -34,10 +34,7 @@ using namespace iceDEM;
 namespace
 {
 
-using test::hydro::g;
-using test::hydro::rhoIce;
-using test::hydro::rhoWater;
-using test::hydro::SingleThread;
+using namespace test::hydro;
 
 //- Single-floe world: a box floe Lx x Ly x h (true size), bottom at zb,
 //  centred on the z-axis in its input frame, placed with orientation Q

@@ -41,12 +41,7 @@ using namespace iceDEM;
 namespace
 {
 
-using test::hydro::g;
-using test::hydro::radius;
-using test::hydro::rhoIce;
-using test::hydro::rhoWater;
-using test::hydro::expectError;
-using test::hydro::SingleThread;
+using namespace test::hydro;
 
 //- World with square-ish box floes Lx x Ly x h (true size) with their
 //  bottom at zb (test::hydro::BoxWorld: soft ice, no contacts happen)

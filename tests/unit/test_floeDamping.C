@@ -35,11 +35,7 @@ using namespace iceDEM;
 namespace
 {
 
-using test::hydro::g;
-using test::hydro::radius;
-using test::hydro::rhoIce;
-using test::hydro::rhoWater;
-using test::hydro::SingleThread;
+using namespace test::hydro;
 
 struct DampWorld
 :

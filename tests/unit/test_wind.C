@@ -51,12 +51,7 @@ using namespace iceDEM;
 namespace
 {
 
-using test::hydro::g;
-using test::hydro::radius;
-using test::hydro::rhoIce;
-using test::hydro::rhoWater;
-using test::hydro::expectError;
-using test::hydro::SingleThread;
+using namespace test::hydro;
 
 //- World of prism floes (true size: the outer polyhedron is the prism of
 //  the given polygon, bottom zb, height h)
@@ -495,23 +490,12 @@ std::unique_ptr<World> windField(int n, unsigned seed)
     const int mat = w->addMaterial(test::ice(1e9));
     w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
     std::mt19937_64 rng(seed);
-    auto uni = [&](double a, double b)
-    {
-        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
-    };
+    auto uni = [&](double a, double b) { return test::uniform(rng, a, b); };
     const int side = int(std::ceil(std::sqrt(double(n))));
     const double pitch = 3.0;
     for (int k = 0; k < n; ++k)
     {
-        std::vector<Vec2> poly;
-        const int m = 5 + int(rng() % 3);
-        const double phase = uni(0, 2*M_PI);
-        for (int j = 0; j < m; ++j)
-        {
-            const double a = phase + 2*M_PI*j/m;
-            const double rad = uni(1.0, 1.3);
-            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
-        }
+        const std::vector<Vec2> poly = test::randomFloeOutline(rng);
         const int shape = w->addShape
         (
             DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1)
