@@ -690,11 +690,8 @@ TEST(Wind, exactAgreesWithSampledOnRandomPoses)
     std::mt19937 gen(61);
     std::uniform_real_distribution<double> U(-1, 1);
 
-    constexpr int nSub = DragSettings::maxSubdivision + 1;
-    double formSq[nSub] = {}, skinSq[nSub] = {}, formMax[nSub] = {},
-        skinMax[nSub] = {};
-    double exactSq = 0, exactMax = 0;
-    int nPoses = 0;
+    ExactVsSampled stats;
+    constexpr int nSub = ExactVsSampled::nSub;
 
     for (int trial = 0; trial < 200; ++trial)
     {
@@ -732,71 +729,25 @@ TEST(Wind, exactAgreesWithSampledOnRandomPoses)
             const Wind wd(WaterSettings{rhoWater, 0}, ws, WindHistory(Ua));
             wd.bodyWind(*ww.world, 0, Ua, F, M);
         };
-        auto error = [&](const Vec3& F, const Vec3& M,
-                         const Vec3& Fr, const Vec3& Mr)
-        {
-            const double scale = Fr.norm() + Mr.norm()/size;
-            return ((F - Fr).norm() + (M - Mr).norm()/size)/scale;
-        };
-
-        Vec3 Fe, Me, Se, SMe;
-        wind(true, DragIntegration::exact, 0, Fe, Me);
-        wind(false, DragIntegration::exact, 0, Se, SMe);
-        if (!(Fe.norm() > 0) || !(Se.norm() > 0))
-        {
-            continue;   // overwashed, nothing leading or no top in the air
-        }
-        ++nPoses;
-        Vec3 Fs[nSub], Ms[nSub], Ss[nSub], SMs[nSub];
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            wind(true, DragIntegration::sampled, sub, Fs[sub], Ms[sub]);
-            wind(false, DragIntegration::sampled, sub, Ss[sub], SMs[sub]);
-        }
-        const Vec3 Sr = (4*Ss[nSub - 1] - Ss[nSub - 2])/3;
-        const Vec3 SMr = (4*SMs[nSub - 1] - SMs[nSub - 2])/3;
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            const double ef = error(Fs[sub], Ms[sub], Fe, Me);
-            const double es = error(Ss[sub], SMs[sub], Sr, SMr);
-            formSq[sub] += ef*ef;
-            skinSq[sub] += es*es;
-            formMax[sub] = std::max(formMax[sub], ef);
-            skinMax[sub] = std::max(skinMax[sub], es);
-        }
-        const double e = error(Se, SMe, Sr, SMr);
-        exactSq += e*e;
-        exactMax = std::max(exactMax, e);
+        // skipped: overwashed, nothing leading or no top in the air
+        stats.add(wind, size);
     }
 
-    ASSERT_GT(nPoses, 100);
-    std::cout << "wind accuracy over " << nPoses << " random poses"
-              << " (relative error of force + moment/size, rms and max):\n";
-    double rms[nSub];
-    for (int sub = 0; sub < nSub; ++sub)
-    {
-        rms[sub] = std::sqrt(formSq[sub]/nPoses);
-        std::cout << "  sampled subdivision " << sub
-                  << ": form vs exact " << rms[sub] << " (max "
-                  << formMax[sub] << "), skin vs Richardson limit "
-                  << std::sqrt(skinSq[sub]/nPoses) << " (max " << skinMax[sub]
-                  << ")\n";
-    }
-    const double exactRms = std::sqrt(exactSq/nPoses);
-    std::cout << "  exact integration: skin vs Richardson limit " << exactRms
-              << " (max " << exactMax << ")" << std::endl;
+    ASSERT_GT(stats.nPoses, 100);
+    stats.print("wind", "skin");
 
     // The sampled form drag converges to the closed form at the rate h^2
     for (int sub = 1; sub < nSub; ++sub)
     {
-        EXPECT_GT(rms[sub - 1]/rms[sub], 3.0) << "subdivision " << sub;
+        EXPECT_GT(stats.formRms(sub - 1)/stats.formRms(sub), 3.0)
+            << "subdivision " << sub;
     }
-    EXPECT_LT(rms[nSub - 1], 1e-3);
+    EXPECT_LT(stats.formRms(nSub - 1), 1e-3);
     // The skin drag: the closed form within the Richardson limit's own
     // error (of order the last correction, skinSq[4]/skinSq[3] ~ 1/16
     // of subdivision 4's), far below the default sampling (subdivision 1)
-    EXPECT_LT(exactRms, 0.1*std::sqrt(skinSq[nSub - 1]/nPoses));
-    EXPECT_LT(exactMax, 0.1*skinMax[nSub - 1]);
+    EXPECT_LT(stats.exactRms(), 0.1*stats.skinRms(nSub - 1));
+    EXPECT_LT(stats.exactMax, 0.1*stats.skinMax[nSub - 1]);
 }
 
 
