@@ -664,15 +664,11 @@ void Drag::addForces
     Vec3* torque
 ) const
 {
-    for (int i = begin; i < end; ++i)
-    {
-        // Fixed and prescribed bodies (a structure) do not move with it
-        if (!world.bodies()[i].isFree()) continue;
-        Vec3 F, M;
-        bodyDrag(world, i, F, M);
-        force[i] += F;
-        torque[i] += M;
-    }
+    addFreeBodyForces
+    (
+        world, begin, end, force, torque,
+        [&](int i, Vec3& F, Vec3& M) { bodyDrag(world, i, F, M); }
+    );
 }
 
 } // namespace iceDEM

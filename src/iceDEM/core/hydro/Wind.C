@@ -323,14 +323,11 @@ void Wind::addForces
 ) const
 {
     const Vec3 Ua = history_.at(world.time());
-    for (int i = begin; i < end; ++i)
-    {
-        if (!world.bodies()[i].isFree()) continue;
-        Vec3 F, M;
-        bodyWind(world, i, Ua, F, M);
-        force[i] += F;
-        torque[i] += M;
-    }
+    addFreeBodyForces
+    (
+        world, begin, end, force, torque,
+        [&](int i, Vec3& F, Vec3& M) { bodyWind(world, i, Ua, F, M); }
+    );
 }
 
 } // namespace iceDEM
