@@ -588,33 +588,6 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
 }
 
 
-void Drag::exactBodyDrag
-(
-    const PolyhedronView& P,
-    const Mat3& R,
-    const Body& b,
-    const Vec3& omega,
-    const Vec3& current,
-    Vec3& F,
-    Vec3& M
-) const
-{
-    // This thread's frame (large: not on the stack)
-    static thread_local WaterFrame frame;
-    computeWaterFrame(P, R, b.x, water_.level, frame);
-    if (!frame.valid())
-    {
-        throw Error
-        (
-            "drag: the exact integration takes polyhedra of at most "
-          + std::to_string(maxClipVertices) + " vertices and faces of at most "
-          + std::to_string(SubmergedFace::maxVertices - 1) + " vertices"
-        );
-    }
-    frameDrag(P, frame, b, omega, current, F, M);
-}
-
-
 void Drag::frameDrag
 (
     const PolyhedronView& P,
