@@ -610,21 +610,16 @@ void Drag::frameDrag
     const Vec3 w = b.v - current;
 
     // The wet polygons (vertices relative to the centroid)
-    for (int wf = 0; wf < frame.nWet; ++wf)
-    {
-        const PolyhedronView::Face face = P.faces()[frame.wetFace[wf]];
-        const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
-        const int m = frame.wetBegin[wf + 1] - frame.wetBegin[wf];
-
-        const Vec3 nrm = frame.R*face.normal;
-        bool skin;
-        const double coeff = facetCoefficient(nrm, skin);
-        if (coeff == 0)
+    addPolygonsDrag
+    (
+        P, frame.R, frame.nWet, frame.wetFace, frame.wetBegin,
+        frame.wetVertex, w, omega,
+        [this](const Vec3& n, bool& skin)
         {
-            continue;
-        }
-        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
-    }
+            return facetCoefficient(n, skin);
+        },
+        F, M
+    );
 }
 
 

@@ -285,16 +285,16 @@ void Wind::frameWind
     const Vec3 w = b.v - Ua;
 
     // The dry polygons (vertices relative to the centroid)
-    for (int k = 0; k < frame.nDry; ++k)
-    {
-        const Vec3* q = frame.dryVertex + frame.dryBegin[k];
-        const int m = frame.dryBegin[k + 1] - frame.dryBegin[k];
-        const Vec3 nrm = frame.R*P.faces()[frame.dryFace[k]].normal;
-        bool skin;
-        const double coeff = facetCoefficient(nrm, skin);
-        if (coeff == 0) continue;
-        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
-    }
+    addPolygonsDrag
+    (
+        P, frame.R, frame.nDry, frame.dryFace, frame.dryBegin,
+        frame.dryVertex, w, omega,
+        [this](const Vec3& n, bool& skin)
+        {
+            return facetCoefficient(n, skin);
+        },
+        F, M
+    );
 }
 
 
