@@ -19,6 +19,7 @@ Description
 
 #include "World.H"
 #include "hydro/Buoyancy.H"
+#include "hydroFixtures.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -33,10 +34,7 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using namespace test::hydro;
 
 //- Single-floe world: a box floe Lx x Ly x h (true size), bottom at zb,
 //  centred on the z-axis in its input frame, placed with orientation Q
@@ -57,27 +55,12 @@ struct FloeWorld
         const Vec3& gravity = Vec3(0, 0, -g)
     )
     {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = gravity;
-        world = std::make_unique<World>(ws);
-        const int ice = world->addMaterial(Material{"ice", rhoIce, 1e9, 0.33});
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
+        test::hydro::BoxWorld w(dt, gravity, 1e9);
+        body = w.addBox
         (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius,
-                    h - 2*radius
-                ),
-                radius
-            )
+            Lx, Ly, h, zb, Vec3::Zero(), Q, Vec3::Zero(), Vec3::Zero()
         );
-        body = world->addBody(shape, ice, Vec3::Zero(), Q);
+        world = std::move(w.world);
     }
 
     const Body& floe() const { return world->bodies()[body]; }
@@ -151,17 +134,6 @@ double meanPeriod(const std::vector<double>& crossings)
 {
     return (crossings.back() - crossings.front())/(crossings.size() - 1);
 }
-
-//- One OpenMP thread for the long single-floe runs: with one body there
-//  is nothing to share, and on a busy machine the barriers of a second
-//  thread would dominate the run time (thread independence is tested in
-//  Drag.independentOfThreadCount)
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
-};
 
 } // anonymous namespace
 

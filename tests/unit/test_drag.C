@@ -24,6 +24,7 @@ Description
 #include "hydro/Buoyancy.H"
 #include "hydro/Drag.H"
 #include "hydro/FlowVelocity.H"
+#include "hydroFixtures.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -40,27 +41,15 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using namespace test::hydro;
 
 //- World with square-ish box floes Lx x Ly x h (true size) with their
-//  bottom at zb. No contacts happen: a soft material keeps the time-step
-//  check (Hertz contact time) out of the way of long steps.
+//  bottom at zb (test::hydro::BoxWorld: soft ice, no contacts happen)
 struct DragWorld
+:
+    test::hydro::BoxWorld
 {
-    std::unique_ptr<World> world;
-    int ice = -1;
-
-    DragWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
-    {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = gravity;
-        world = std::make_unique<World>(ws);
-        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
-    }
+    using BoxWorld::BoxWorld;
 
     int addFloe
     (
@@ -73,22 +62,7 @@ struct DragWorld
         const Vec3& omega = Vec3::Zero()
     )
     {
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
-        (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius,
-                    h - 2*radius
-                ),
-                radius
-            )
-        );
-        return world->addBody(shape, ice, centre, Quat::Identity(), v, omega);
+        return addBox(Lx, Ly, h, zb, centre, Quat::Identity(), v, omega);
     }
 
     void addWater(const DragSettings& ds, const Vec3& current)
@@ -103,34 +77,6 @@ struct DragWorld
             )
         );
     }
-
-    const Body& body(int i) const { return world->bodies()[i]; }
-};
-
-//- Expect an Error naming 'entry' from f()
-template<class F>
-void expectError(F f, const std::string& entry)
-{
-    try
-    {
-        f();
-        ADD_FAILURE() << "no Error (entry " << entry << ")";
-    }
-    catch (const Error& e)
-    {
-        EXPECT_EQ(e.entry(), entry) << e.what();
-    }
-}
-
-//- One OpenMP thread for the long single-floe runs: with one body there
-//  is nothing to share, and on a busy machine the barriers of a second
-//  thread would dominate the run time (thread independence is tested in
-//  Drag.independentOfThreadCount)
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
 };
 
 } // anonymous namespace
@@ -527,13 +473,8 @@ TEST(Drag, exactAgreesWithSampledOnRandomPoses)
     std::mt19937 gen(16);
     std::uniform_real_distribution<double> U(-1, 1);
 
-    constexpr int nSub = DragSettings::maxSubdivision + 1;
-    // Sum of squared relative errors per subdivision (form, skin) and of
-    // the exact rule (skin), and the largest
-    double formSq[nSub] = {}, skinSq[nSub] = {}, formMax[nSub] = {},
-        skinMax[nSub] = {};
-    double ruleSq = 0, ruleMax = 0;
-    int nPoses = 0;
+    ExactVsSampled stats;
+    constexpr int nSub = ExactVsSampled::nSub;
 
     for (int trial = 0; trial < 200; ++trial)
     {
@@ -574,71 +515,23 @@ TEST(Drag, exactAgreesWithSampledOnRandomPoses)
             );
             d.bodyDrag(*dw.world, 0, F, M);
         };
-        auto error = [&](const Vec3& F, const Vec3& M,
-                         const Vec3& Fr, const Vec3& Mr)
-        {
-            const double scale = Fr.norm() + Mr.norm()/size;
-            return ((F - Fr).norm() + (M - Mr).norm()/size)/scale;
-        };
-
-        Vec3 Fe, Me, Se, SMe;
-        drag(true, DragIntegration::exact, 0, Fe, Me);
-        drag(false, DragIntegration::exact, 0, Se, SMe);
-        if (!(Fe.norm() > 0) || !(Se.norm() > 0))
-        {
-            continue;   // dry, or nothing leading
-        }
-        ++nPoses;
-        Vec3 Fs[nSub], Ms[nSub], Ss[nSub], SMs[nSub];
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            drag(true, DragIntegration::sampled, sub, Fs[sub], Ms[sub]);
-            drag(false, DragIntegration::sampled, sub, Ss[sub], SMs[sub]);
-        }
-        const Vec3 Sr = (4*Ss[nSub - 1] - Ss[nSub - 2])/3;
-        const Vec3 SMr = (4*SMs[nSub - 1] - SMs[nSub - 2])/3;
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            const double ef = error(Fs[sub], Ms[sub], Fe, Me);
-            const double es = error(Ss[sub], SMs[sub], Sr, SMr);
-            formSq[sub] += ef*ef;
-            skinSq[sub] += es*es;
-            formMax[sub] = std::max(formMax[sub], ef);
-            skinMax[sub] = std::max(skinMax[sub], es);
-        }
-        const double er = error(Se, SMe, Sr, SMr);
-        ruleSq += er*er;
-        ruleMax = std::max(ruleMax, er);
+        stats.add(drag, size);   // skipped: dry, or nothing leading
     }
 
-    ASSERT_GT(nPoses, 100);
-    std::cout << "drag accuracy over " << nPoses << " random poses"
-              << " (relative error of force + moment/size, rms and max):\n";
-    double rms[nSub];
-    for (int sub = 0; sub < nSub; ++sub)
-    {
-        rms[sub] = std::sqrt(formSq[sub]/nPoses);
-        std::cout << "  sampled subdivision " << sub
-                  << ": form vs exact " << rms[sub] << " (max "
-                  << formMax[sub] << "), skin vs Richardson limit "
-                  << std::sqrt(skinSq[sub]/nPoses) << " (max " << skinMax[sub]
-                  << ")\n";
-    }
-    const double ruleRms = std::sqrt(ruleSq/nPoses);
-    std::cout << "  exact integration: form exact, skin (closed form) vs"
-              << " Richardson limit " << ruleRms << " (max " << ruleMax << ")"
-              << std::endl;
+    ASSERT_GT(stats.nPoses, 100);
+    stats.print("drag", "form exact, skin (closed form)");
 
     // The sampled form drag converges to the closed form at the rate h^2
     for (int sub = 1; sub < nSub; ++sub)
     {
-        EXPECT_GT(rms[sub - 1]/rms[sub], 3.0) << "subdivision " << sub;
+        EXPECT_GT(stats.formRms(sub - 1)/stats.formRms(sub), 3.0)
+            << "subdivision " << sub;
     }
-    EXPECT_LT(rms[nSub - 1], 1e-3);
+    EXPECT_LT(stats.formRms(nSub - 1), 1e-3);
     // The skin rule: no less accurate than the sampling it replaces as the
     // default (subdivision 2), in the mean and at its worst
-    EXPECT_LT(ruleRms, std::sqrt(skinSq[2]/nPoses));
-    EXPECT_LT(ruleMax, skinMax[2]);
+    EXPECT_LT(stats.exactRms(), stats.skinRms(2));
+    EXPECT_LT(stats.exactMax, stats.skinMax[2]);
 }
 
 

@@ -19,6 +19,7 @@ Description
 #include "hydro/Buoyancy.H"
 #include "hydro/FloeDamping.H"
 #include "hydro/WaterFrame.H"
+#include "hydroFixtures.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -34,24 +35,13 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using namespace test::hydro;
 
 struct DampWorld
+:
+    test::hydro::BoxWorld
 {
-    std::unique_ptr<World> world;
-    int ice = -1;
-
-    explicit DampWorld(double dt)
-    {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = Vec3(0, 0, -g);
-        world = std::make_unique<World>(ws);
-        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
-    }
+    explicit DampWorld(double dt) : BoxWorld(dt) {}
 
     int addBox
     (
@@ -61,21 +51,7 @@ struct DampWorld
         const Vec3& omega = Vec3::Zero()
     )
     {
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
-        (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius, h - 2*radius
-                ),
-                radius
-            )
-        );
-        return world->addBody(shape, ice, Vec3::Zero(), q, v, omega);
+        return BoxWorld::addBox(Lx, Ly, h, zb, Vec3::Zero(), q, v, omega);
     }
 
     void addWater(const FloeDampingSettings* damping)
@@ -90,15 +66,6 @@ struct DampWorld
             );
         }
     }
-
-    const Body& body(int i) const { return world->bodies()[i]; }
-};
-
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
 };
 
 } // anonymous namespace

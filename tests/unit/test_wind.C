@@ -34,6 +34,7 @@ Description
 #include "hydro/FlowVelocity.H"
 #include "hydro/WaterFrame.H"
 #include "hydro/Wind.H"
+#include "hydroFixtures.H"
 #include "testWorlds.H"
 
 #include <gtest/gtest.h>
@@ -50,26 +51,15 @@ using namespace iceDEM;
 namespace
 {
 
-constexpr double rhoIce = 900;
-constexpr double rhoWater = 1025;
-constexpr double g = 9.81;
-constexpr double radius = 0.05;
+using namespace test::hydro;
 
 //- World of prism floes (true size: the outer polyhedron is the prism of
 //  the given polygon, bottom zb, height h)
 struct WindWorld
+:
+    test::hydro::BoxWorld
 {
-    std::unique_ptr<World> world;
-    int ice = -1;
-
-    explicit WindWorld(double dt, const Vec3& gravity = Vec3(0, 0, -g))
-    {
-        WorldSettings ws;
-        ws.timeStep = dt;
-        ws.gravity = gravity;
-        world = std::make_unique<World>(ws);
-        ice = world->addMaterial(Material{"ice", rhoIce, 1e7, 0.33});
-    }
+    using BoxWorld::BoxWorld;
 
     //- Box Lx x Ly x h with its bottom at zb
     int addBox
@@ -79,21 +69,10 @@ struct WindWorld
         const Vec3& v = Vec3::Zero()
     )
     {
-        const double a = 0.5*Lx - radius;
-        const double b = 0.5*Ly - radius;
-        const int shape = world->addShape
+        return BoxWorld::addBox
         (
-            DilatedShape
-            (
-                ConvexPolyhedron::prism
-                (
-                    {{-a, -b}, {a, -b}, {a, b}, {-a, b}},
-                    zb + radius, h - 2*radius
-                ),
-                radius
-            )
+            Lx, Ly, h, zb, centre, Quat::Identity(), v, Vec3::Zero()
         );
-        return world->addBody(shape, ice, centre, Quat::Identity(), v);
     }
 
     void addWater
@@ -122,29 +101,6 @@ struct WindWorld
             );
         }
     }
-
-    const Body& body(int i) const { return world->bodies()[i]; }
-};
-
-template<class F>
-void expectError(F f, const std::string& entry)
-{
-    try
-    {
-        f();
-        ADD_FAILURE() << "no Error (entry " << entry << ")";
-    }
-    catch (const Error& e)
-    {
-        EXPECT_EQ(e.entry(), entry) << e.what();
-    }
-}
-
-struct SingleThread
-{
-    int saved;
-    SingleThread() : saved(omp_get_max_threads()) { omp_set_num_threads(1); }
-    ~SingleThread() { omp_set_num_threads(saved); }
 };
 
 //- Analytic free-drift speed of a square floe L x L x h at its draft
@@ -534,23 +490,12 @@ std::unique_ptr<World> windField(int n, unsigned seed)
     const int mat = w->addMaterial(test::ice(1e9));
     w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
     std::mt19937_64 rng(seed);
-    auto uni = [&](double a, double b)
-    {
-        return a + (b - a)*double(rng() >> 11)*(1.0/9007199254740992.0);
-    };
+    auto uni = [&](double a, double b) { return test::uniform(rng, a, b); };
     const int side = int(std::ceil(std::sqrt(double(n))));
     const double pitch = 3.0;
     for (int k = 0; k < n; ++k)
     {
-        std::vector<Vec2> poly;
-        const int m = 5 + int(rng() % 3);
-        const double phase = uni(0, 2*M_PI);
-        for (int j = 0; j < m; ++j)
-        {
-            const double a = phase + 2*M_PI*j/m;
-            const double rad = uni(1.0, 1.3);
-            poly.emplace_back(rad*std::cos(a), rad*std::sin(a));
-        }
+        const std::vector<Vec2> poly = test::randomFloeOutline(rng);
         const int shape = w->addShape
         (
             DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1)
@@ -745,11 +690,8 @@ TEST(Wind, exactAgreesWithSampledOnRandomPoses)
     std::mt19937 gen(61);
     std::uniform_real_distribution<double> U(-1, 1);
 
-    constexpr int nSub = DragSettings::maxSubdivision + 1;
-    double formSq[nSub] = {}, skinSq[nSub] = {}, formMax[nSub] = {},
-        skinMax[nSub] = {};
-    double exactSq = 0, exactMax = 0;
-    int nPoses = 0;
+    ExactVsSampled stats;
+    constexpr int nSub = ExactVsSampled::nSub;
 
     for (int trial = 0; trial < 200; ++trial)
     {
@@ -787,71 +729,25 @@ TEST(Wind, exactAgreesWithSampledOnRandomPoses)
             const Wind wd(WaterSettings{rhoWater, 0}, ws, WindHistory(Ua));
             wd.bodyWind(*ww.world, 0, Ua, F, M);
         };
-        auto error = [&](const Vec3& F, const Vec3& M,
-                         const Vec3& Fr, const Vec3& Mr)
-        {
-            const double scale = Fr.norm() + Mr.norm()/size;
-            return ((F - Fr).norm() + (M - Mr).norm()/size)/scale;
-        };
-
-        Vec3 Fe, Me, Se, SMe;
-        wind(true, DragIntegration::exact, 0, Fe, Me);
-        wind(false, DragIntegration::exact, 0, Se, SMe);
-        if (!(Fe.norm() > 0) || !(Se.norm() > 0))
-        {
-            continue;   // overwashed, nothing leading or no top in the air
-        }
-        ++nPoses;
-        Vec3 Fs[nSub], Ms[nSub], Ss[nSub], SMs[nSub];
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            wind(true, DragIntegration::sampled, sub, Fs[sub], Ms[sub]);
-            wind(false, DragIntegration::sampled, sub, Ss[sub], SMs[sub]);
-        }
-        const Vec3 Sr = (4*Ss[nSub - 1] - Ss[nSub - 2])/3;
-        const Vec3 SMr = (4*SMs[nSub - 1] - SMs[nSub - 2])/3;
-        for (int sub = 0; sub < nSub; ++sub)
-        {
-            const double ef = error(Fs[sub], Ms[sub], Fe, Me);
-            const double es = error(Ss[sub], SMs[sub], Sr, SMr);
-            formSq[sub] += ef*ef;
-            skinSq[sub] += es*es;
-            formMax[sub] = std::max(formMax[sub], ef);
-            skinMax[sub] = std::max(skinMax[sub], es);
-        }
-        const double e = error(Se, SMe, Sr, SMr);
-        exactSq += e*e;
-        exactMax = std::max(exactMax, e);
+        // skipped: overwashed, nothing leading or no top in the air
+        stats.add(wind, size);
     }
 
-    ASSERT_GT(nPoses, 100);
-    std::cout << "wind accuracy over " << nPoses << " random poses"
-              << " (relative error of force + moment/size, rms and max):\n";
-    double rms[nSub];
-    for (int sub = 0; sub < nSub; ++sub)
-    {
-        rms[sub] = std::sqrt(formSq[sub]/nPoses);
-        std::cout << "  sampled subdivision " << sub
-                  << ": form vs exact " << rms[sub] << " (max "
-                  << formMax[sub] << "), skin vs Richardson limit "
-                  << std::sqrt(skinSq[sub]/nPoses) << " (max " << skinMax[sub]
-                  << ")\n";
-    }
-    const double exactRms = std::sqrt(exactSq/nPoses);
-    std::cout << "  exact integration: skin vs Richardson limit " << exactRms
-              << " (max " << exactMax << ")" << std::endl;
+    ASSERT_GT(stats.nPoses, 100);
+    stats.print("wind", "skin");
 
     // The sampled form drag converges to the closed form at the rate h^2
     for (int sub = 1; sub < nSub; ++sub)
     {
-        EXPECT_GT(rms[sub - 1]/rms[sub], 3.0) << "subdivision " << sub;
+        EXPECT_GT(stats.formRms(sub - 1)/stats.formRms(sub), 3.0)
+            << "subdivision " << sub;
     }
-    EXPECT_LT(rms[nSub - 1], 1e-3);
+    EXPECT_LT(stats.formRms(nSub - 1), 1e-3);
     // The skin drag: the closed form within the Richardson limit's own
     // error (of order the last correction, skinSq[4]/skinSq[3] ~ 1/16
     // of subdivision 4's), far below the default sampling (subdivision 1)
-    EXPECT_LT(exactRms, 0.1*std::sqrt(skinSq[nSub - 1]/nPoses));
-    EXPECT_LT(exactMax, 0.1*skinMax[nSub - 1]);
+    EXPECT_LT(stats.exactRms(), 0.1*stats.skinRms(nSub - 1));
+    EXPECT_LT(stats.exactMax, 0.1*stats.skinMax[nSub - 1]);
 }
 
 

@@ -68,6 +68,28 @@ inline Vec3 tangential(const Vec3& u, const Vec3& n)
     return u - u.dot(n)*n;
 }
 
+//- The preamble of the skin integrals: zeroes I and Ir and finds the
+//  centroid of the polygon q[0..m) (normal n); false for a polygon of fewer
+//  than 3 or more than SubmergedFace::maxVertices + 1 vertices or of no
+//  positive area
+bool skinPolygon
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    Vec3& I,
+    Vec3& Ir,
+    Vec3& centroid
+)
+{
+    I.setZero();
+    Ir.setZero();
+    double area;
+    return
+        m >= 3 && m <= SubmergedFace::maxVertices + 1
+     && polygonCentroid(q, m, n, area, centroid);
+}
+
 } // anonymous namespace
 
 
@@ -82,12 +104,8 @@ bool skinIntegralConical
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    double area;
     Vec3 centroid;
-    if (m < 3 || m > SubmergedFace::maxVertices + 1) return false;
-    if (!polygonCentroid(q, m, n, area, centroid)) return false;
+    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
 
     // u_t is linear: its value at the centroid and its change towards each
     // vertex (e_k = q_k - centroid)
@@ -221,12 +239,8 @@ bool skinIntegralClosedForm
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    double area;
     Vec3 centroid;
-    if (m < 3 || m > SubmergedFace::maxVertices + 1) return false;
-    if (!polygonCentroid(q, m, n, area, centroid)) return false;
+    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
     return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
 }
 
@@ -245,18 +259,8 @@ bool skinIntegral
     // The closed form loses (D/a)^2 of precision in the moment when the
     // centre of rotation is D far from a polygon of size a; there the field
     // is nearly uniform and the conical rule errs by about (a/D)^4
-    double area;
     Vec3 centroid;
-    if
-    (
-        m < 3 || m > SubmergedFace::maxVertices + 1
-     || !polygonCentroid(q, m, n, area, centroid)
-    )
-    {
-        I.setZero();
-        Ir.setZero();
-        return false;
-    }
+    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
     double a2 = 0;
     for (int k = 0; k < m; ++k)
     {
@@ -432,6 +436,16 @@ const char* Drag::name() const
 }
 
 
+double Drag::facetCoefficient(const Vec3& n, bool& skin) const
+{
+    skin = std::abs(n.z()) >= settings_.bottomCosine;
+    const double halfRho = 0.5*water_.density;
+    return
+        halfRho
+       *(skin ? settings_.skinCoefficient : settings_.formCoefficient);
+}
+
+
 void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
 {
     constexpr int capacity = 1 << (2*DragSettings::maxSubdivision);
@@ -506,7 +520,6 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         }
     }
 
-    const double halfRho = 0.5*water_.density;
     const int sub = settings_.subdivision;
 
     SubmergedFace face;
@@ -522,10 +535,8 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         }
 
         const Vec3& n = face.normal;
-        const bool skin = std::abs(n.z()) >= settings_.bottomCosine;
-        const double coeff =
-            halfRho
-           *(skin ? settings_.skinCoefficient : settings_.formCoefficient);
+        bool skin;
+        const double coeff = facetCoefficient(n, skin);
         if (coeff == 0)
         {
             continue;
@@ -577,33 +588,6 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
 }
 
 
-void Drag::exactBodyDrag
-(
-    const PolyhedronView& P,
-    const Mat3& R,
-    const Body& b,
-    const Vec3& omega,
-    const Vec3& current,
-    Vec3& F,
-    Vec3& M
-) const
-{
-    // This thread's frame (large: not on the stack)
-    static thread_local WaterFrame frame;
-    computeWaterFrame(P, R, b.x, water_.level, frame);
-    if (!frame.valid())
-    {
-        throw Error
-        (
-            "drag: the exact integration takes polyhedra of at most "
-          + std::to_string(maxClipVertices) + " vertices and faces of at most "
-          + std::to_string(SubmergedFace::maxVertices - 1) + " vertices"
-        );
-    }
-    frameDrag(P, frame, b, omega, current, F, M);
-}
-
-
 void Drag::frameDrag
 (
     const PolyhedronView& P,
@@ -624,26 +608,18 @@ void Drag::frameDrag
 
     // Velocity relative to the water: w + omega x r, linear over a face
     const Vec3 w = b.v - current;
-    const double halfRho = 0.5*water_.density;
 
     // The wet polygons (vertices relative to the centroid)
-    for (int wf = 0; wf < frame.nWet; ++wf)
-    {
-        const PolyhedronView::Face face = P.faces()[frame.wetFace[wf]];
-        const Vec3* q = frame.wetVertex + frame.wetBegin[wf];
-        const int m = frame.wetBegin[wf + 1] - frame.wetBegin[wf];
-
-        const Vec3 nrm = frame.R*face.normal;
-        const bool skin = std::abs(nrm.z()) >= settings_.bottomCosine;
-        const double coeff =
-            halfRho
-           *(skin ? settings_.skinCoefficient : settings_.formCoefficient);
-        if (coeff == 0)
+    addPolygonsDrag
+    (
+        P, frame.R, frame.nWet, frame.wetFace, frame.wetBegin,
+        frame.wetVertex, w, omega,
+        [this](const Vec3& n, bool& skin)
         {
-            continue;
-        }
-        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
-    }
+            return facetCoefficient(n, skin);
+        },
+        F, M
+    );
 }
 
 
@@ -656,15 +632,11 @@ void Drag::addForces
     Vec3* torque
 ) const
 {
-    for (int i = begin; i < end; ++i)
-    {
-        // Fixed and prescribed bodies (a structure) do not move with it
-        if (!world.bodies()[i].isFree()) continue;
-        Vec3 F, M;
-        bodyDrag(world, i, F, M);
-        force[i] += F;
-        torque[i] += M;
-    }
+    addFreeBodyForces
+    (
+        world, begin, end, force, torque,
+        [&](int i, Vec3& F, Vec3& M) { bodyDrag(world, i, F, M); }
+    );
 }
 
 } // namespace iceDEM

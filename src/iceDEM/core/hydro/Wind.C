@@ -155,6 +155,18 @@ const char* Wind::name() const
 }
 
 
+double Wind::facetCoefficient(const Vec3& n, bool& skin) const
+{
+    skin = std::abs(n.z()) >= settings_.topCosine;
+    const double rho = settings_.rhoAir;
+    // Bulk skin formula without 1/2; form drag with 1/2
+    return
+        skin
+      ? rho*settings_.skinCoefficient
+      : 0.5*rho*settings_.formCoefficient;
+}
+
+
 void Wind::bodyWind
 (
     const World& world,
@@ -204,7 +216,6 @@ void Wind::bodyWind
         if (!dry) return;
     }
 
-    const double rho = settings_.rhoAir;
     const int sub = settings_.subdivision;
 
     SubmergedFace face;
@@ -217,12 +228,8 @@ void Wind::bodyWind
         if (!emergedFace(P, f, R, b.x, level_, face)) continue;
 
         const Vec3& n = face.normal;
-        const bool skin = std::abs(n.z()) >= settings_.topCosine;
-        // Bulk skin formula without 1/2; form drag with 1/2
-        const double coeff =
-            skin
-          ? rho*settings_.skinCoefficient
-          : 0.5*rho*settings_.formCoefficient;
+        bool skin;
+        const double coeff = facetCoefficient(n, skin);
         if (coeff == 0) continue;
 
         for (int k = 0; k < face.nVertices; ++k)
@@ -276,23 +283,18 @@ void Wind::frameWind
 
     // Velocity relative to the air: w + omega x r, linear over a face
     const Vec3 w = b.v - Ua;
-    const double rho = settings_.rhoAir;
 
     // The dry polygons (vertices relative to the centroid)
-    for (int k = 0; k < frame.nDry; ++k)
-    {
-        const Vec3* q = frame.dryVertex + frame.dryBegin[k];
-        const int m = frame.dryBegin[k + 1] - frame.dryBegin[k];
-        const Vec3 nrm = frame.R*P.faces()[frame.dryFace[k]].normal;
-        const bool skin = std::abs(nrm.z()) >= settings_.topCosine;
-        // Bulk skin formula without 1/2; form drag with 1/2
-        const double coeff =
-            skin
-          ? rho*settings_.skinCoefficient
-          : 0.5*rho*settings_.formCoefficient;
-        if (coeff == 0) continue;
-        addFacetDrag(q, m, nrm, skin, coeff, w, omega, F, M);
-    }
+    addPolygonsDrag
+    (
+        P, frame.R, frame.nDry, frame.dryFace, frame.dryBegin,
+        frame.dryVertex, w, omega,
+        [this](const Vec3& n, bool& skin)
+        {
+            return facetCoefficient(n, skin);
+        },
+        F, M
+    );
 }
 
 
@@ -321,14 +323,11 @@ void Wind::addForces
 ) const
 {
     const Vec3 Ua = history_.at(world.time());
-    for (int i = begin; i < end; ++i)
-    {
-        if (!world.bodies()[i].isFree()) continue;
-        Vec3 F, M;
-        bodyWind(world, i, Ua, F, M);
-        force[i] += F;
-        torque[i] += M;
-    }
+    addFreeBodyForces
+    (
+        world, begin, end, force, torque,
+        [&](int i, Vec3& F, Vec3& M) { bodyWind(world, i, Ua, F, M); }
+    );
 }
 
 } // namespace iceDEM
