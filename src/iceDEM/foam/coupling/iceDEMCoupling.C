@@ -903,6 +903,7 @@ void Foam::iceDEMCoupling::solve()
         }
         w.setTime(t1);
         w.checkFinite();
+        case_->writeInflowOutflow();
     }
     catch (const std::exception& err)
     {
