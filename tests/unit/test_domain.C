@@ -643,6 +643,110 @@ TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
 namespace
 {
 
+//- The colliding cluster with one of its floes (id 4) fixed: a structure
+//  the others hit; optionally an idle floe far away first (index 0, id
+//  1000), whose removal moves every other index down by one
+std::unique_ptr<World> clusterWithStructure(bool farFirst)
+{
+    auto w = makePeriodicField(100, 9);
+    auto v = std::make_unique<World>(noGravity());
+    const int mat = v->addMaterial(ice(1e9));
+    v->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
+    for (const DilatedShape& s : w->shapes()) v->addShape(s);
+    if (farFirst)
+    {
+        v->addBody
+        (
+            0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0),
+            Vec3::Zero(), BodyMotion::free, 1000
+        );
+    }
+    int k = 0;
+    for (const Body& b : w->bodies())
+    {
+        const bool structure = k == 4;
+        const int i = v->addBody
+        (
+            b.shape, mat, Vec3::Zero(), Quat::Identity(), Vec3::Zero(),
+            Vec3::Zero(), structure ? BodyMotion::fixed : BodyMotion::free, k
+        );
+        Body& t = v->bodies()[i];
+        t.x = b.x;
+        t.q = b.q;
+        if (!structure)
+        {
+            t.v = b.v;
+            t.L = b.L;
+        }
+        ++k;
+    }
+    return v;
+}
+
+} // anonymous namespace
+
+
+TEST(bodiesInRun, aStructureIsFoundByIdAndKeepsItsLoadWhenBodiesBelowItGo)
+{
+    // The coupled solvers add the structure after the floes and find it
+    // again by id when inflow/outflow removes floes below it: its index
+    // moves, its contact load (the body's force) stays that of a run
+    // without the removed floe, also in the step of the removal, where
+    // the neighbour list's pair forces are rebuilt
+    const int id = 4;
+    auto a = clusterWithStructure(false);
+    auto b = clusterWithStructure(true);
+    ASSERT_EQ(a->indexOfId(id), 4);
+    ASSERT_EQ(b->indexOfId(id), 5);
+    int steps = 0;
+    do
+    {
+        a->step();
+        b->step();
+    } while (a->contactLoad(4).force.squaredNorm() == 0 && ++steps < 20000);
+    ASSERT_GT(a->contactLoad(4).force.squaredNorm(), 0) << "the structure is never hit";
+    EXPECT_EQ(b->bodies()[5].force, a->bodies()[4].force);
+
+    std::vector<bool> remove(b->bodies().size(), false);
+    remove[0] = true;
+    b->removeBodiesInRun(remove);
+    const int i = b->indexOfId(id, 5);
+    ASSERT_EQ(i, 4);
+    EXPECT_EQ(b->bodies()[i].force, a->bodies()[4].force);
+    EXPECT_EQ(b->bodies()[i].force, a->contactLoad(4).force);
+    EXPECT_EQ(b->bodies()[i].torque, a->contactLoad(4).torque);
+    for (int k = 0; k < 200; ++k)
+    {
+        a->step();
+        b->step();
+        ASSERT_EQ(b->bodies()[4].force, a->bodies()[4].force) << "step " << k;
+    }
+    expectSameState(*a, *b);
+    EXPECT_EQ(b->indexOfId(1000), -1);
+    EXPECT_EQ(b->indexOfId(id, 1000), 4);
+}
+
+
+TEST(bodiesInRun, coresBroughtTogetherInARunDoNotStopARemoval)
+{
+    // A hard contact may push two cores into each other during a run; the
+    // rebuild after a removal continues the run (as the uninterrupted run
+    // does) instead of refusing the pair as an overlap at the start
+    auto w = clusterWithFarFloe(true);
+    w->advanceTo(0.1);
+    w->bodies()[1].x = w->bodies()[0].x + Vec3(0.05, 0, 0);
+    std::vector<bool> remove(w->bodies().size(), false);
+    remove.back() = true;
+    EXPECT_NO_THROW(w->removeBodiesInRun(remove));
+    // a body inserted onto another is still refused
+    w->insertBodyInRun(0, 0, w->bodies()[2].x + Vec3(0.1, 0, 0));
+    EXPECT_THROW(w->step(), Error);
+}
+
+
+namespace
+{
+
 //- Free drift at 1 m/s along +x through [0, 100] x [0, 50] m with inflow
 //  strips of 20 m at concentration c
 std::unique_ptr<World> driftWithInflow(double c, std::shared_ptr<InflowOutflow>& io)

@@ -235,12 +235,22 @@ void World::removeBodies(const std::vector<bool>& remove)
 }
 
 
-void World::restartWith(const std::vector<ContactRecord>& records)
+void World::restartWith(const std::vector<ContactRecord>& records, int newFrom)
 {
     const long step = step_;
     const double time = time_;
     pendingRecords_ = records;
-    initialise(true);
+    overlapCheckFrom_ = newFrom;
+    try
+    {
+        initialise(true);
+    }
+    catch (...)
+    {
+        overlapCheckFrom_ = -1;
+        throw;
+    }
+    overlapCheckFrom_ = -1;
     step_ = step;
     time_ = time;
 }
@@ -297,7 +307,28 @@ void World::removeBodiesInRun(const std::vector<bool>& remove)
         if (newIndex[i] >= 0) kept.push_back(bodies_[i]);
     }
     bodies_.swap(kept);
-    restartWith(records);
+
+    // The kept bodies' model forces of the step just taken stay readable
+    // (modelForceOnFreeBodies: the drive of a force balance), as their
+    // total forces do
+    std::vector<Vec3> mf, mt;
+    if (modelForce_.size() == std::size_t(N))
+    {
+        mf.reserve(n);
+        mt.reserve(n);
+        for (int i = 0; i < N; ++i)
+        {
+            if (newIndex[i] < 0) continue;
+            mf.push_back(modelForce_[i]);
+            mt.push_back(modelTorque_[i]);
+        }
+    }
+    restartWith(records, n);    // no new body: no overlap check
+    if (!mf.empty() && modelForce_.size() == mf.size())
+    {
+        modelForce_.swap(mf);
+        modelTorque_.swap(mt);
+    }
 }
 
 
@@ -330,7 +361,7 @@ void World::joinInserted()
 {
     const int first = firstInserted_;
     firstInserted_ = -1;
-    restartWith(contactRecords());
+    restartWith(contactRecords(), first);
     // An inserted body must not touch anything: overlaps of cores are
     // refused by initialise, touching dilated surfaces here
     FoundContact found[maxContactsPerPair];
@@ -451,10 +482,19 @@ void World::initialise(bool restart)
     nlist_ = std::make_unique<NeighbourList>(skin);
     nlist_->build(*this);
 
-    // Overlaps at start: intersecting cores are always an error
+    // Overlaps at start: intersecting cores are an error, but between two
+    // bodies that were already in the run (a restart from a saved state,
+    // or bodies removed or inserted during a run): a hard contact may
+    // bring two cores together, and the restart continues the run as the
+    // uninterrupted one does
+    const int checkFrom =
+        !restart ? 0
+      : overlapCheckFrom_ >= 0 ? overlapCheckFrom_
+      : static_cast<int>(bodies_.size());
     for (const ContactPair& p : nlist_->pairs())
     {
         if (p.isWall()) continue;
+        if (p.i < checkFrom && p.j < checkFrom) continue;
         const BodyView A{&shapeOf(p.i), worldVertices(p.i), bodies_[p.i].rotation(), bodies_[p.i].x};
         Vec3 translated[maxShapeVertices];
         const BodyView B = viewOfJ(p, translated);
@@ -702,6 +742,22 @@ int World::bodyContactCount(int b) const
         }
     }
     return n;
+}
+
+
+int World::indexOfId(int id, int hint) const
+{
+    const int N = static_cast<int>(bodies_.size());
+    const int start = std::min(hint, N - 1);
+    for (int i = start; i >= 0; --i)
+    {
+        if (bodies_[i].id == id) return i;
+    }
+    for (int i = std::max(start + 1, 0); i < N; ++i)
+    {
+        if (bodies_[i].id == id) return i;
+    }
+    return -1;
 }
 
 

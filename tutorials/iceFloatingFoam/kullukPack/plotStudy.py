@@ -31,6 +31,7 @@ import argparse
 import glob
 import math
 import os
+import re
 import sys
 
 import numpy as np
@@ -55,8 +56,8 @@ NEAR_RADIUS = 60.0        # [m] around the axis: the cone and the ice at it
 def readParameters(d):
     p = {}
     for line in open(os.path.join(d, "parameters")):
-        k, v = line.split()
-        p[k] = v
+        k, v = line.split(None, 1)
+        p[k] = v.strip()
     return p
 
 
@@ -99,13 +100,14 @@ def stats(x):
                 p99=np.percentile(x, 99), hw=batchHalfWidth(x))
 
 
-def hullCounts(d, tStart, floes):
+def hullCounts(d, tStart, floes, pieces=0):
     """Mean over the write times after the transient of the floes (ids below
     'floes': the structure's pieces follow them) whose centre is inside the
     waterline circle (under the hull: only a submerged floe gets there), and
     of the floes within NEAR_RADIUS of the axis whose top is below the water
     (centre below -h/2: pushed down the cone or under the hull; a floating
-    floe's centre is at about -0.38 h)."""
+    floe's centre is at about -0.38 h). Floes inserted by an inflow (ids
+    after the pieces') count."""
     f = os.path.join(d, "postProcessing/iceDEM/0/bodies.dat")
     if not os.path.exists(f):
         return float("nan"), float("nan"), float("nan"), float("nan")
@@ -116,7 +118,7 @@ def hullCounts(d, tStart, floes):
             continue
         v = line.split()
         t, i = float(v[0]), int(v[1])
-        if t <= tStart or i >= floes:
+        if t <= tStart or floes <= i < floes + pieces or (not pieces and i >= floes):
             continue
         x, y, z = float(v[2]), float(v[3]), float(v[4])
         vx.append(float(v[5]))
@@ -165,6 +167,14 @@ def analyseRun(d, transient):
     for k, v in stats(Tmax).items():
         r["Tmax_" + k] = v
     r.update(load=load, drive=drive, ratio=load/drive, ratioHalfWidth=hwRatio)
+    # the trend within the run: the first and the second half of the window
+    half = len(S)//2
+    r.update(Fh_half1=Fh[:half].mean(), Fh_half2=Fh[half:].mean(),
+             drive_half1=np.hypot(*D[:half].mean(axis=0)),
+             drive_half2=np.hypot(*D[half:].mean(axis=0)))
+    r["finished"] = int(os.path.isfile(os.path.join(d, "done")))
+    r["domain"] = p.get("domain", "periodic")
+    r["startVelocity"] = p.get("startVelocity", "current")
     sp = os.path.join(d, "speed.txt")
     if os.path.exists(sp):
         rows = [l.split() for l in open(sp) if not l.startswith("#")]
@@ -176,8 +186,17 @@ def analyseRun(d, transient):
         r["wallTime"] = wall
     floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
                                     if l.split()[:1] == ["floes"]][-1])
+    # the structure's pieces have the ids floes .. floes + pieces - 1 (the
+    # solver adds them after the field); floes inserted by an inflow come after
+    pieces = 0
+    for line in open(os.path.join(d, "log.iceFloatingFoam")):
+        m = re.search(r"convex piece\(s\), (\d+) segment\(s\)", line)
+        if m:
+            pieces = int(m.group(1))
+            break
+    r.setdefault("floes", floes)
     r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"], r["packSpeedX"] = \
-        hullCounts(d, transient, floes)
+        hullCounts(d, transient, floes, pieces)
     return r
 
 
@@ -194,10 +213,13 @@ def main():
     ap.add_argument("--dir", required=True)
     ap.add_argument("--transient", type=float, default=300.0)
     ap.add_argument("--convergence", action="store_true")
+    ap.add_argument("--unfinished", action="store_true",
+                    help="also the points still running or stopped (column finished = 0)")
     a = ap.parse_args()
     runs = []
     for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
-        if os.path.isfile(os.path.join(d, "done")):
+        if os.path.isfile(os.path.join(d, "done")) or \
+                (a.unfinished and os.path.isfile(os.path.join(d, "parameters"))):
             r = analyseRun(d, a.transient)
             if r is None:
                 print(f"plotStudy: {d}: too few steady samples, left out")
@@ -211,7 +233,8 @@ def main():
         for k in keys:
             r.setdefault(k, float("nan"))
     writeCsv(os.path.join(a.dir, "study_runs.csv"), runs, keys)
-    print(f"plotStudy: {len(runs)} finished runs -> {a.dir}/study_runs.csv")
+    print(f"plotStudy: {len(runs)} runs ({sum(r['finished'] for r in runs)} finished)"
+          f" -> {a.dir}/study_runs.csv")
     print("run                      |Fh| mean +- hw [MN]   P99    max  | Tmax mean  P99 [MN] | "
           "balance ratio +- hw | floe-steps/s contacts/step")
     for r in runs:
@@ -297,8 +320,10 @@ def figures(d, runs, agg):
 
 
 def convergence(a, runs):
-    keys = ["dir", "length", "width", "deltaT", "seed", "floes", "Fh_mean", "Fh_hw", "Fh_std",
+    keys = ["dir", "domain", "startVelocity", "finished", "length", "width", "deltaT", "seed",
+            "floes", "steadyFrom", "steadyTo", "Fh_mean", "Fh_hw", "Fh_std",
             "Fh_p99", "Fh_max", "Tmax_mean", "drive", "ratio", "ratioHalfWidth", "packSpeedX",
+            "Fh_half1", "Fh_half2", "drive_half1", "drive_half2",
             "floesUnderHull", "floesPushedDown", "floesNearHull",
             "floeStepsPerSecond", "contactsPerStep", "wallTime"]
     for r in runs:

@@ -639,16 +639,8 @@ void Foam::iceDEMCase::appendBodyName(const word& name)
             << ": name every added body right after adding it" << nl
             << exit(FatalError);
     }
-    if (inflow_)
-    {
-        // The coupled solvers keep the indices of the bodies they add,
-        // which inflow/outflow moves
-        FatalIOErrorInFunction(properties_)
-            << "Entry 'domain' (type inflowOutflow): not available yet with"
-            << " bodies added by the solver (body " << name << "; e.g. the"
-            << " structure of iceFloatingFoam); use iceDEMFoam" << nl
-            << exit(FatalIOError);
-    }
+    // With inflow/outflow the solver finds its bodies again by id (their
+    // indices move); the name goes with the id (start)
     bodyNames_.append(name);
 }
 

@@ -25,6 +25,10 @@ Description
             // lloydIterations, velocity, iceDensity, waterDensity,
             // waterLevel, minCoreEdgeRatio, minCoreWidthRatio; lateral
             // (lo hi) [default: fieldDict's region across the drift]
+            sides       open;       // [open] or periodic: the lateral
+                                    // bounds are periodic (core/domain/
+                                    // Domain: images, wrap), as a periodic
+                                    // pack across the drift
         }
 
     The counts go to the log and to
@@ -329,6 +333,12 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
         [&]{ ::iceDEM::checkVoronoiFieldSettings(f); }
     );
 
+    // Across the drift: open, or periodic over the lateral bounds (the
+    // same Domain as type periodic, in the lateral direction only)
+    const bool periodicSides =
+        selectName(d, "sides", wordList{"open", "periodic"}, "open")
+     == "periodic";
+
     coreCall
     (
         d, "domain",
@@ -336,6 +346,14 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
         {
             inflow_ = std::make_shared<::iceDEM::InflowOutflow>(s);
             world_->setInflowOutflow(inflow_);
+            if (periodicSides)
+            {
+                ::iceDEM::DomainSettings ds;
+                ds.periodic[1 - s.axis] = true;
+                ds.lo[1 - s.axis] = latLo;
+                ds.hi[1 - s.axis] = latHi;
+                world_->setDomain(ds);
+            }
         }
     );
 
@@ -344,7 +362,8 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
         << " m every " << s.interval << " s, concentration "
         << f.concentration << ", mean floe area " << f.meanFloeArea
         << " m2, seed " << label(f.seed) << " (generator from " << fdName
-        << ")" << nl;
+        << "), sides " << (periodicSides ? "periodic (" : "open (") << latLo
+        << " " << latHi << ")" << nl;
 }
 
 

@@ -261,6 +261,7 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
             }
         );
         case_->appendBodyName("hull" + Foam::name(pi));
+        pieceIds_.push_back(w.bodies()[index].id);
 
         pieceX0_.push_back(w.bodies()[index].x);
         pieceQ0_.push_back(w.bodies()[index].q);
@@ -270,6 +271,35 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
         << structure.pieces().size() << " convex piece(s), " << nPieces_
         << " segment(s) between rings as prescribed DEM bodies (material "
         << matName.c_str() << ", radius " << r << " m)" << nl;
+}
+
+
+void Foam::iceDEMCoupling::findPieces()
+{
+    if (!nPieces_)
+    {
+        return;
+    }
+    const ::iceDEM::World& w = case_->world();
+    const label n = label(w.bodies().size());
+    if (firstPiece_ < n && w.bodies()[firstPiece_].id == pieceIds_[0])
+    {
+        return;
+    }
+    firstPiece_ = w.indexOfId(pieceIds_[0], int(firstPiece_));
+    for (label p = 0; p < nPieces_; ++p)
+    {
+        if
+        (
+            firstPiece_ < 0 || firstPiece_ + p >= n
+         || w.bodies()[firstPiece_ + p].id != pieceIds_[p]
+        )
+        {
+            FatalErrorInFunction
+                << "The structure's DEM bodies (ids " << pieceIds_[0] << " ...)"
+                << " are no longer together in the DEM" << exit(FatalError);
+        }
+    }
 }
 
 
@@ -578,6 +608,18 @@ Foam::iceDEMCoupling::iceDEMCoupling
 
     const dictionary& props = case_->properties();
 
+    if (flow_ && case_->inflowOutflow())
+    {
+        // The resolved flow keeps per-floe caches by index (its samples,
+        // cells and fits), which removals and insertions would mix up
+        FatalIOErrorInFunction(props)
+            << "Entry 'domain' (type inflowOutflow) of constant/"
+            << "iceDEMProperties: not available yet with drag type resolved"
+            << " (its per-floe caches follow body indices); use the"
+            << " empirical drag or iceFloatingFoam -noFlow" << nl
+            << exit(FatalIOError);
+    }
+
     word forceName("iceLoadForce");
     word momentName("iceLoadMoment");
     if (props.found("coupling", keyType::LITERAL))
@@ -624,6 +666,7 @@ Foam::iceDEMCoupling::iceDEMCoupling
         flow_->update();
     }
     case_->start();
+    findPieces();       // a restart with inflow/outflow moves them
 
     if (flow_ && flow_->twoWay())
     {
@@ -824,21 +867,24 @@ void Foam::iceDEMCoupling::solve()
                 flow_->accumulate(hStep);
             }
 
+            findPieces();   // inflow/outflow may have removed floes
             const scalar h = (last ? t1 : w.time()) - tPrev;
             case_->stepDone(h);
 
+            // A piece's force and torque are its contact load (no model
+            // acts on a prescribed body, no gravity); unlike contactLoad
+            // they survive the neighbour list's rebuild after a removal
             ::iceDEM::Vec3 F = ::iceDEM::Vec3::Zero();
             ::iceDEM::Vec3 M = ::iceDEM::Vec3::Zero();
             bool touching = false;
             for (label p = 0; p < nPieces_; ++p)
             {
                 const ::iceDEM::Body& b = w.bodies()[firstPiece_ + p];
-                const ::iceDEM::ContactLoad c = w.contactLoad(firstPiece_ + p);
-                if (c.force.squaredNorm() > 0 || c.torque.squaredNorm() > 0)
+                if (b.force.squaredNorm() > 0 || b.torque.squaredNorm() > 0)
                 {
                     touching = true;
-                    F += c.force;
-                    M += c.torque + (b.x - CoR).cross(c.force);
+                    F += b.force;
+                    M += b.torque + (b.x - CoR).cross(b.force);
                 }
             }
             impulseF += h*F;
@@ -857,6 +903,7 @@ void Foam::iceDEMCoupling::solve()
         }
         w.setTime(t1);
         w.checkFinite();
+        case_->writeInflowOutflow();
     }
     catch (const std::exception& err)
     {

@@ -44,9 +44,23 @@ void Foam::functionObjects::iceLoadStatistics::accumulator::demStep
 {
     const ::iceDEM::World& w = demCase.world();
     ::iceDEM::Vec3 f = ::iceDEM::Vec3::Zero();
-    for (const label b : bodies)
+    for (std::size_t k = 0; k < bodies.size(); ++k)
     {
-        f += w.contactLoad(b).force;
+        label& b = bodies[k];
+        if (b >= label(w.bodies().size()) || w.bodies()[b].id != ids[k])
+        {
+            b = w.indexOfId(int(ids[k]), int(b));
+            if (b < 0)
+            {
+                FatalErrorInFunction
+                    << "Structure body id " << ids[k] << " is no longer in"
+                    << " the DEM" << exit(FatalError);
+            }
+        }
+        // A structure body's force is its contact load (no model acts on
+        // it, no gravity); unlike contactLoad it survives the neighbour
+        // list's rebuild when inflow/outflow removes floes
+        f += w.bodies()[b].force;
     }
     ::iceDEM::Vec3 wl = ::iceDEM::Vec3::Zero();
     if (!walls.empty())
@@ -110,6 +124,7 @@ void Foam::functionObjects::iceLoadStatistics::connect()
                     << nl << exit(FatalIOError);
             }
             acc_->bodies.push_back(i);
+            acc_->ids.push_back(w.bodies()[i].id);
         }
         else if (!isFree)
         {
