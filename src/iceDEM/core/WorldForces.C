@@ -271,10 +271,8 @@ void World::pairForces(double dtTangential)
                 const StoredFeatureList& L = oldLists[p.featureList];
                 list.count = L.count;
                 list.entries = oldEntries + L.firstEntry;
-                list.xA = L.xA;
-                list.xB = L.xB;
-                list.qA = L.qA;
-                list.qB = L.qB;
+                list.t = L.t;
+                list.Q = L.Q;
                 list.touched = p.nContacts > 0;
             }
             double separation = std::numeric_limits<double>::lowest();
@@ -318,10 +316,8 @@ void World::pairForces(double dtTangential)
             if (list.count >= 0)
             {
                 StoredFeatureList L;
-                L.xA = list.xA;
-                L.xB = list.xB;
-                L.qA = list.qA;
-                L.qB = list.qB;
+                L.t = list.t;
+                L.Q = list.Q;
                 L.count = list.count;
                 stageList(p, L, list.entries);
             }
