@@ -150,6 +150,23 @@ Vec3 World::centroidOfJ(const ContactPair& p) const
 }
 
 
+RelativePose World::pairPose(const ContactPair& p) const
+{
+    const Body& bi = bodies_[p.i];
+    return relativePose(bi.x, bi.q, centroidOfJ(p), bodies_[p.j].q);
+}
+
+
+bool World::certifiedApart(const ContactPair& p) const
+{
+    const NeighbourList& nl = *nlist_;
+    if (nl.separated(p)) return true;
+    // The certificate from the pair's own check costs a relative pose:
+    // only where the first fails
+    return !p.isWall() && p.checkSeparation > 0 && nl.separatedSinceCheck(p, pairPose(p));
+}
+
+
 ContactResult World::contactForce
 (
     const ContactPair& p,
@@ -248,7 +265,7 @@ void World::pairForces(double dtTangential)
             // vertices); its feature-pair list is kept as the narrow phase
             // would keep it, after a separating axis. Most such pairs write
             // nothing: their cache lines stay shared between the threads
-            if (nl.separated(p))
+            if (certifiedApart(p))
             {
                 if (p.nContacts > 0) clearPairForces(p);
                 if (p.featureList >= 0)
@@ -280,7 +297,14 @@ void World::pairForces(double dtTangential)
             (
                 p, p.axis, found, p.isWall() ? nullptr : &list, &separation
             );
-            if (nFound == 0) nl.certify(p, separation);
+            if (nFound == 0)
+            {
+                nl.certify
+                (
+                    p, separation,
+                    p.isWall() ? RelativePose{Vec3::Zero(), Quat::Identity()} : pairPose(p)
+                );
+            }
 
             const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
