@@ -278,6 +278,7 @@ void World::pairForces(double dtTangential)
             }
             staged_[k] = {thread, static_cast<int>(S.contacts.size())};
             ++searched;
+            nl.spend(p);
             ensureBodyFrame(p.i);
             if (!p.isWall()) ensureBodyFrame(p.j);
 

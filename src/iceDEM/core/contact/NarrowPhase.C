@@ -123,13 +123,12 @@ int findContacts
             if (list && list->count >= 0)
             {
                 const RelativePose now = relativePose(A, B);
-                const double moved = relativeMotionBound
+                const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+                listHolds = relativeMotionBelow
                 (
                     list->t, list->Q, now.t, now.Q,
-                    SA.boundingRadius(), SB.boundingRadius()
+                    SA.boundingRadius(), SB.boundingRadius(), s.featureSkin - eta
                 );
-                const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-                listHolds = moved < s.featureSkin - eta;
             }
         }
         return listHolds == 1;
