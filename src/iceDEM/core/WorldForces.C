@@ -150,6 +150,23 @@ Vec3 World::centroidOfJ(const ContactPair& p) const
 }
 
 
+RelativePose World::pairPose(const ContactPair& p) const
+{
+    const Body& bi = bodies_[p.i];
+    return relativePose(bi.x, bi.q, centroidOfJ(p), bodies_[p.j].q);
+}
+
+
+bool World::certifiedApart(const ContactPair& p) const
+{
+    const NeighbourList& nl = *nlist_;
+    if (nl.separated(p)) return true;
+    // The certificate from the pair's own check costs a relative pose:
+    // only where the first fails
+    return !p.isWall() && p.checkSeparation > 0 && nl.separatedSinceCheck(p, pairPose(p));
+}
+
+
 ContactResult World::contactForce
 (
     const ContactPair& p,
@@ -248,7 +265,7 @@ void World::pairForces(double dtTangential)
             // vertices); its feature-pair list is kept as the narrow phase
             // would keep it, after a separating axis. Most such pairs write
             // nothing: their cache lines stay shared between the threads
-            if (nl.separated(p))
+            if (certifiedApart(p))
             {
                 if (p.nContacts > 0) clearPairForces(p);
                 if (p.featureList >= 0)
@@ -261,6 +278,7 @@ void World::pairForces(double dtTangential)
             }
             staged_[k] = {thread, static_cast<int>(S.contacts.size())};
             ++searched;
+            nl.spend(p);
             ensureBodyFrame(p.i);
             if (!p.isWall()) ensureBodyFrame(p.j);
 
@@ -271,10 +289,8 @@ void World::pairForces(double dtTangential)
                 const StoredFeatureList& L = oldLists[p.featureList];
                 list.count = L.count;
                 list.entries = oldEntries + L.firstEntry;
-                list.xA = L.xA;
-                list.xB = L.xB;
-                list.qA = L.qA;
-                list.qB = L.qB;
+                list.t = L.t;
+                list.Q = L.Q;
                 list.touched = p.nContacts > 0;
             }
             double separation = std::numeric_limits<double>::lowest();
@@ -282,7 +298,14 @@ void World::pairForces(double dtTangential)
             (
                 p, p.axis, found, p.isWall() ? nullptr : &list, &separation
             );
-            if (nFound == 0) nl.certify(p, separation);
+            if (nFound == 0)
+            {
+                nl.certify
+                (
+                    p, separation,
+                    p.isWall() ? RelativePose{Vec3::Zero(), Quat::Identity()} : pairPose(p)
+                );
+            }
 
             const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
@@ -318,10 +341,8 @@ void World::pairForces(double dtTangential)
             if (list.count >= 0)
             {
                 StoredFeatureList L;
-                L.xA = list.xA;
-                L.xB = list.xB;
-                L.qA = list.qA;
-                L.qB = list.qB;
+                L.t = list.t;
+                L.Q = list.Q;
                 L.count = list.count;
                 stageList(p, L, list.entries);
             }

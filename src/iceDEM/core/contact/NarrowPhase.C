@@ -111,7 +111,8 @@ int findContacts
 
     // The feature-pair list holds while the cores have moved less than
     // featureSkin relative to each other since it was built (a bound that
-    // depends on the present poses only, not on the path); evaluated when
+    // depends on the present relative pose only, not on the path, nor on
+    // the pair's common motion: NarrowPhase.H); evaluated when
     // the first axis does not separate the cores
     if (!(s.featureSkin > 0)) list = nullptr;
     int listHolds = -1;
@@ -122,11 +123,13 @@ int findContacts
             listHolds = 0;
             if (list && list->count >= 0)
             {
-                const double moved =
-                    motionBound(list->xA, list->qA, A.x, A.q, SA.boundingRadius())
-                  + motionBound(list->xB, list->qB, B.x, B.q, SB.boundingRadius());
+                const RelativePose now = relativePose(A, B);
                 const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-                listHolds = moved < s.featureSkin - eta;
+                listHolds = relativeMotionBelow
+                (
+                    list->t, list->Q, now.t, now.Q,
+                    SA.boundingRadius(), SB.boundingRadius(), s.featureSkin - eta
+                );
             }
         }
         return listHolds == 1;
@@ -205,10 +208,9 @@ int findContacts
         const double listReach = rs + (list ? s.featureSkin : 0);
         if (list)
         {
-            list->xA = A.x;
-            list->xB = B.x;
-            list->qA = A.q;
-            list->qB = B.q;
+            const RelativePose now = relativePose(A, B);
+            list->t = now.t;
+            list->Q = now.Q;
         }
         ListBuilder builder(search, list, listReach, s.featureSkin);
 

@@ -248,8 +248,8 @@ void NeighbourList::build(const World& world)
     );
 
     // Pairs of bodies wrapped since the last build (periodic domain): the
-    // image of j relative to i changes by the wraps, and a feature-pair
-    // list's poses (i's and j's image) move with body i
+    // image of j relative to i changes by the wraps (the image then moves
+    // with i: a feature-pair list's relative pose is unchanged)
     const std::vector<int>& wraps = world.wraps();
     std::vector<std::pair<long long, int>> oldOrder;
     bool wrapped = false;
@@ -277,12 +277,6 @@ void NeighbourList::build(const World& world)
             }
             if (image < 0) continue;    // out of reach: its history ends
             p.image = image;
-            if (p.featureList >= 0)
-            {
-                const Vec3 s = domain->shift(wi);
-                lists_[p.featureList].xA += s;
-                lists_[p.featureList].xB += s;
-            }
             oldOrder.emplace_back(pairKey(p.i, p.j, p.image, N), k);
         }
         std::sort(oldOrder.begin(), oldOrder.end());
