@@ -482,21 +482,8 @@ TEST(Drag, exactAgreesWithSampledOnRandomPoses)
         const double Lx = 2 + 3*std::abs(U(gen));
         const double Ly = 2 + 3*std::abs(U(gen));
         dw.addFloe(Lx, Ly, 1, -0.5);
-        Body& b = dw.world->bodies()[0];
         // Nearly level (floating) or any attitude (overwashed, on edge)
-        const Mat3 R = trial % 2
-            ? Mat3(Eigen::AngleAxisd
-              (
-                  0.15*U(gen), Vec3(U(gen), U(gen), 0.2*U(gen)).normalized()
-              ).toRotationMatrix())
-            : Mat3(Eigen::AngleAxisd
-              (
-                  M_PI*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
-              ).toRotationMatrix());
-        b.q = Quat(R);
-        b.x = Vec3(10*U(gen), 10*U(gen), 0.6*U(gen));
-        b.v = Vec3(0.5*U(gen), 0.5*U(gen), 0.1*U(gen));
-        b.setOmega(Vec3(0.1*U(gen), 0.1*U(gen), 0.3*U(gen)));
+        randomHydroPose(dw.world->bodies()[0], gen, trial % 2, 0.3);
         const Vec3 current(0.3*U(gen), 0.3*U(gen), 0);
         const double size = std::max(Lx, Ly);
 

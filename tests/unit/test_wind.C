@@ -699,22 +699,9 @@ TEST(Wind, exactAgreesWithSampledOnRandomPoses)
         const double Lx = 2 + 3*std::abs(U(gen));
         const double Ly = 2 + 3*std::abs(U(gen));
         ww.addBox(Lx, Ly, 1, -0.5);
-        Body& b = ww.world->bodies()[0];
-        const Mat3 R = trial % 2
-            ? Mat3(Eigen::AngleAxisd
-              (
-                  0.15*U(gen), Vec3(U(gen), U(gen), 0.2*U(gen)).normalized()
-              ).toRotationMatrix())
-            : Mat3(Eigen::AngleAxisd
-              (
-                  M_PI*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
-              ).toRotationMatrix());
-        b.q = Quat(R);
-        b.x = Vec3(10*U(gen), 10*U(gen), 0.6*U(gen));
-        b.v = Vec3(0.5*U(gen), 0.5*U(gen), 0.1*U(gen));
         // Spins from slow (the relative wind nearly uniform) to fast
         const double spin = trial % 3 == 0 ? 2.0 : 0.3;
-        b.setOmega(Vec3(0.1*U(gen), 0.1*U(gen), spin*U(gen)));
+        randomHydroPose(ww.world->bodies()[0], gen, trial % 2, spin);
         const Vec3 Ua(20*U(gen), 20*U(gen), 0);
         const double size = std::max(Lx, Ly);
 
