@@ -968,6 +968,10 @@ void Foam::iceDEMCoupling::solve()
             << " points per sampling (" << st.evaluations << " samplings), "
             << st.outside
             << " of " << st.points << " outside the mesh (far-field current)";
+        if (st.images)
+        {
+            Info<< ", " << st.images << " at a periodic image";
+        }
         if (st.unprepared)
         {
             Info<< ", " << st.unprepared << " not prepared";
