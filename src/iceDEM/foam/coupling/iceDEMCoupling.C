@@ -686,6 +686,12 @@ Foam::iceDEMCoupling::iceDEMCoupling
         const dictionary& cs = case_->couplingState();
         pendingForce_ = cs.getOrDefault<vector>("iceLoadForce", Zero);
         pendingMoment_ = cs.getOrDefault<vector>("iceLoadMoment", Zero);
+        if (reaction_ && cs.found("dragSourceInterval"))
+        {
+            // The written source holds this much DEM time of impulse that
+            // the flow has not taken (flowSolveInterval > 1)
+            reaction_->restartInterval(cs.get<scalar>("dragSourceInterval"));
+        }
         if (reaction_ && cs.found("dragFaces"))
         {
             // The face drag of the last evaluation before the write (the
@@ -939,6 +945,7 @@ void Foam::iceDEMCoupling::solve()
         cs.set("dragFaces", nFaces);
         cs.set("dragFaceForces", F);
         cs.set("dragFaceCoefficients", K);
+        cs.set("dragSourceInterval", reaction_->interval());
     }
 
     if (loadFile_.valid())
@@ -968,6 +975,10 @@ void Foam::iceDEMCoupling::solve()
             << " points per sampling (" << st.evaluations << " samplings), "
             << st.outside
             << " of " << st.points << " outside the mesh (far-field current)";
+        if (st.images)
+        {
+            Info<< ", " << st.images << " at a periodic image";
+        }
         if (st.unprepared)
         {
             Info<< ", " << st.unprepared << " not prepared";

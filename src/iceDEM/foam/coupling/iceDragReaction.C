@@ -53,7 +53,10 @@ Foam::iceDragReaction::iceDragReaction
     floeImpulse_(Zero),
     fluidImpulse_(Zero),
     lostImpulse_(Zero),
-    implicitImpulse_(Zero)
+    implicitImpulse_(Zero),
+    interval_(0),
+    taken_(true),
+    flowStep_(0)
 {
     Info<< "iceDEM: two-way drag coupling: the floes' drag returns to "
         << UName_ << " (fields iceDragSource,"
@@ -62,6 +65,13 @@ Foam::iceDragReaction::iceDragReaction
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
+
+Foam::scalar Foam::iceDragReaction::sourceScale() const
+{
+    const scalar dt = mesh_.time().deltaTValue();
+    return (interval_ > 0 && dt > 0) ? interval_/dt : 1;
+}
+
 
 Foam::tmp<Foam::fvVectorMatrix> Foam::iceDragReaction::source
 (
@@ -80,11 +90,22 @@ Foam::tmp<Foam::volVectorField> Foam::iceDragReaction::explicitSource
     const volVectorField& U
 ) const
 {
+    // Called by the flow solve only: the flow takes the source for this
+    // step (the impulse of interval_ over the flow step deltaT)
+    taken_ = true;
+    flowStep_ = mesh_.time().deltaTValue();
     return tmp<volVectorField>::New
     (
         "iceDragExplicitSource",
-        source_ + coeff_*U.oldTime()
+        sourceScale()*source_ + coeff_*U.oldTime()
     );
+}
+
+
+void Foam::iceDragReaction::restartInterval(scalar T)
+{
+    interval_ = T;
+    taken_ = false;
 }
 
 
@@ -92,8 +113,10 @@ void Foam::iceDragReaction::correct()
 {
     // What the implicit part gave the flow in the step just solved
     const volVectorField& U = mesh_.lookupObject<volVectorField>(UName_);
+    const scalar dt =
+        (taken_ && flowStep_ > 0) ? flowStep_ : mesh_.time().deltaTValue();
     implicitImpulse_ =
-        -rhoW_*mesh_.time().deltaTValue()
+        -rhoW_*dt
        *gSum
         (
             coeff_.primitiveField()*mesh_.V()
@@ -114,10 +137,23 @@ void Foam::iceDragReaction::update(scalar T)
     fluidImpulse_ = gSum(J);
 
     const scalarField& V = mesh_.V();
-    if (T > 0)
+
+    // The flow has not taken the previous source (flowSolveInterval > 1):
+    // its impulse is added, so the next flow step gets every interval's
+    scalar total = T;
+    if (!taken_ && interval_ > 0)
     {
-        source_.primitiveFieldRef() = J/(rhoW_*V*T);
-        coeff_.primitiveFieldRef() = KT/(rhoW_*V*T);
+        J += source_.primitiveField()*(rhoW_*interval_)*V;
+        KT += coeff_.primitiveField()*(rhoW_*interval_)*V;
+        total += interval_;
+    }
+    interval_ = total;
+    taken_ = false;
+
+    if (total > 0)
+    {
+        source_.primitiveFieldRef() = J/(rhoW_*V*total);
+        coeff_.primitiveFieldRef() = KT/(rhoW_*V*total);
     }
     else
     {
@@ -135,6 +171,12 @@ void Foam::iceDragReaction::update(scalar T)
         << ", lost (no cell) " << lostImpulse_ << " N s" << nl
         << "    two-way drag: implicit part's impulse in the last flow step "
         << implicitImpulse_ << " N s" << nl;
+    if (total != T)
+    {
+        Info<< "    two-way drag: the source holds the impulse of the last "
+            << total << " s (the flow has not taken it yet), fluid total "
+            << gSum(J) << " N s" << nl;
+    }
 }
 
 

@@ -12,8 +12,6 @@
 
 #include "Pstream.H"
 #include "PstreamCombineReduceOps.H"
-#include "treeDataCell.H"
-#include "indexedOctree.H"
 #include "fvcGrad.H"
 
 #include <Eigen/Eigenvalues>
@@ -173,85 +171,6 @@ const Foam::volVectorField& Foam::resolvedFlowVelocity::U() const
             << " no longer registered" << nl << exit(FatalError);
     }
     return *Uptr;
-}
-
-
-Foam::label Foam::resolvedFlowVelocity::exitFace
-(
-    const point& p,
-    label celli
-) const
-{
-    const cell& c = mesh_.cells()[celli];
-    const vectorField& Cf = mesh_.faceCentres();
-    const labelList& own = mesh_.faceOwner();
-
-    label best = -1;
-    scalar bestDist = cellTolerance_[celli];
-    forAll(c, k)
-    {
-        const label f = c[k];
-        scalar d = (p - Cf[f]) & faceNormals_[f];
-        if (own[f] != celli)
-        {
-            d = -d;
-        }
-        if (d > bestDist)
-        {
-            bestDist = d;
-            best = f;
-        }
-    }
-    return best;
-}
-
-
-Foam::label Foam::resolvedFlowVelocity::locate
-(
-    const point& p,
-    label start
-) const
-{
-    if (start >= 0)
-    {
-        label celli = start;
-        for (label step = 0; step < maxWalk_; ++step)
-        {
-            const label f = exitFace(p, celli);
-            if (f < 0)
-            {
-                // Inside every face plane of celli (the interpolation takes
-                // the nearest tetrahedron of a warped cell)
-                return celli;
-            }
-            if (f >= mesh_.nInternalFaces())
-            {
-                break;      // boundary: the octree decides
-            }
-            const label own = mesh_.faceOwner()[f];
-            celli = (own == celli ? mesh_.faceNeighbour()[f] : own);
-        }
-    }
-
-    if (!mesh_.bounds().contains(p))
-    {
-        return -1;
-    }
-    if (!treeBuilt_.load(std::memory_order_acquire))
-    {
-        // Built once per mesh motion by the first thread that needs it;
-        // the others wait here and read it only once it is complete
-        #pragma omp critical(iceDEM_resolvedFlowVelocity_cellTree)
-        {
-            if (!treeBuilt_.load(std::memory_order_relaxed))
-            {
-                (void)mesh_.tetBasePtIs();
-                (void)mesh_.cellTree();
-                treeBuilt_.store(true, std::memory_order_release);
-            }
-        }
-    }
-    return mesh_.cellTree().findInside(p);
 }
 
 
@@ -425,9 +344,14 @@ void Foam::resolvedFlowVelocity::sampleAll
         hits_.assign(N, {});
     }
 
+    // Periodic images of points outside the mesh (nullptr: none)
+    const ::iceDEM::Domain* domain = world.domain();
+
     // 1.-2. Sample points and local interpolation, per body
     // (a parallel region costs more than a few bodies' sampling)
-    #pragma omp parallel for schedule(dynamic, 4) if(N >= minParallelBodies)
+    label images = 0;
+    #pragma omp parallel for schedule(dynamic, 4) if(N >= minParallelBodies) \
+        reduction(+:images)
     for (int i = 0; i < N; ++i)
     {
         cursor_[i] = 0;
@@ -449,10 +373,15 @@ void Foam::resolvedFlowVelocity::sampleAll
         label hint = hint_[i];
         for (size_t k = 0; k < n; ++k)
         {
-            const point p(pts[k].x(), pts[k].y(), pts[k].z());
-            const label celli = locate(p, hint);
+            point p(pts[k].x(), pts[k].y(), pts[k].z());
+            const label celli = locateImage(p, hint, domain);
             if (celli >= 0)
             {
+                if (p.x() != pts[k].x() || p.y() != pts[k].y())
+                {
+                    ++images;
+                }
+                // p: the point or, outside the mesh, its periodic image
                 const vector u = interpolate(p, celli);
                 values_[i][k] = ::iceDEM::Vec3(u.x(), u.y(), u.z());
                 found_[i][k] = 1;
@@ -528,6 +457,12 @@ void Foam::resolvedFlowVelocity::sampleAll
             }
         }
     }
+
+    if (Pstream::parRun())
+    {
+        reduce(images, sumOp<label>());
+    }
+    stats_.images += images;
 
     label outside = 0;
     const ::iceDEM::Vec3 far(current_.x(), current_.y(), current_.z());
