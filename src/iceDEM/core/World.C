@@ -562,7 +562,13 @@ void World::initialise(bool restart)
             c.xi = pendingRecords_[r].xi;
         }
         pendingRecords_.clear();
-        // Contact geometry and counts for output, without touching the springs
+        // Contact geometry and counts for output, without touching the
+        // springs; the bodies that were in the run keep their forces (the
+        // next half kick's), bodies inserted during the run (from
+        // overlapCheckFrom_) take theirs at their pose, as at a start: an
+        // inserted floe moves as the same floe present from the start
+        const std::size_t kept =
+            overlapCheckFrom_ >= 0 ? std::size_t(overlapCheckFrom_) : bodies_.size();
         std::vector<Vec3> F(bodies_.size()), T(bodies_.size());
         for (std::size_t i = 0; i < bodies_.size(); ++i)
         {
@@ -572,7 +578,7 @@ void World::initialise(bool restart)
         const NeighbourList saved = *nlist_;
         computeForces(0);
         *nlist_ = saved;
-        for (std::size_t i = 0; i < bodies_.size(); ++i)
+        for (std::size_t i = 0; i < std::min(kept, bodies_.size()); ++i)
         {
             bodies_[i].force = F[i];
             bodies_[i].torque = T[i];

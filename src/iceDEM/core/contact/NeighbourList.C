@@ -205,11 +205,18 @@ void NeighbourList::build(const World& world)
                 for (int image = 0; image < 9; ++image)
                 {
                     if (image == Domain::noImage) continue;
-                    const Vec3 s = domain->shift(image);
-                    if ((s.x() != 0 && !domain->periodic(0)) || (s.y() != 0 && !domain->periodic(1)))
+                    // By the image's code: along a direction that is not
+                    // periodic the shift is zero, and the image would be
+                    // the body itself (its contacts counted again)
+                    if
+                    (
+                        (Domain::imageX(image) != 0 && !domain->periodic(0))
+                     || (Domain::imageY(image) != 0 && !domain->periodic(1))
+                    )
                     {
                         continue;
                     }
+                    const Vec3 s = domain->shift(image);
                     if (close(L, j, bodies[j].x + s)) addPair(L, j, image);
                 }
             }

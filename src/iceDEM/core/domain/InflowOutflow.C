@@ -91,30 +91,26 @@ void InflowOutflow::update(World& world)
         }
     }
 
-    // Inflow: the most upstream point of the free bodies
+    // Inflow: g, the most upstream point of the free bodies; the pack's
+    // upstream boundary is gap_ upstream of it (the last strip's region
+    // bound as the pack carries it)
     const std::vector<Body>& bodies = world.bodies();
     double g = settings_.downstream;
     for (std::size_t i = 0; i < bodies.size(); ++i)
     {
-        const Body& b = bodies[i];
-        if (!b.isFree()) continue;
-        const DilatedShape& S = world.shapeOf(int(i));
-        const Mat3 R = b.rotation();
-        for (const Vec3& v : S.core().vertices())
-        {
-            g = std::min(g, along(R*v + b.x) - S.radius());
-        }
+        if (bodies[i].isFree()) g = std::min(g, upstreamPoint(world, int(i)));
     }
 
     const int a = settings_.axis;
     const int lateral = 1 - a;
-    while (g - settings_.upstream >= settings_.stripWidth)
+    while (g - gap_ - settings_.upstream >= settings_.stripWidth)
     {
         VoronoiFieldSettings f = settings_.field;
-        // The strip [g - w, g) in s, in world coordinates
-        const double s0 = g - settings_.stripWidth;
-        const double lo = settings_.sign > 0 ? s0 : -g;
-        const double hi = settings_.sign > 0 ? g : -s0;
+        // The strip [b - w, b) in s, b = g - gap_, in world coordinates
+        const double b = g - gap_;
+        const double s0 = b - settings_.stripWidth;
+        const double lo = settings_.sign > 0 ? s0 : -b;
+        const double hi = settings_.sign > 0 ? b : -s0;
         double latLo = lateral == 0 ? f.xmin : f.ymin;
         double latHi = lateral == 0 ? f.xmax : f.ymax;
         if (a == 0)
@@ -142,17 +138,36 @@ void InflowOutflow::update(World& world)
                 world.replaceShape(shape, DilatedShape(floe.core(), floe.radius));
             }
             const int id = int(nextId_++);
-            world.insertBodyInRun
+            const int i = world.insertBodyInRun
             (
                 shape, settings_.material, Vec3::Zero(), Quat::Identity(), floe.velocity,
                 Vec3::Zero(), id
             );
+            g = std::min(g, upstreamPoint(world, i));
             inserted_[id] = floe;
         }
         floesIn_ += static_cast<long>(floes.size());
         ++strips_;
-        g = s0;
+        // The generator keeps its floes off the region's bounds: the next
+        // strip goes against this one's region, not against its floes
+        // (which would close the gap at every seam and raise the
+        // concentration by gap/stripWidth)
+        gap_ = g - s0;
     }
+}
+
+
+double InflowOutflow::upstreamPoint(const World& world, int i) const
+{
+    const Body& b = world.bodies()[i];
+    const DilatedShape& S = world.shapeOf(i);
+    const Mat3 R = b.rotation();
+    double g = std::numeric_limits<double>::max();
+    for (const Vec3& v : S.core().vertices())
+    {
+        g = std::min(g, along(R*v + b.x) - S.radius());
+    }
+    return g;
 }
 
 
@@ -167,6 +182,11 @@ void InflowOutflow::restore(const InflowOutflowState& s, std::map<int, Floe> flo
     strips_ = s.strips;
     nextId_ = s.nextId;
     lastUpdate_ = s.lastUpdate;
+    if (!(std::isfinite(s.gap) && s.gap >= 0))
+    {
+        throw Error("the inflow's strip gap in the state must be >= 0", "stripGap");
+    }
+    gap_ = s.gap;
     inserted_ = std::move(floes);
 }
 

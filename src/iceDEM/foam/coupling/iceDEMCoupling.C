@@ -120,6 +120,19 @@ std::vector<::iceDEM::Vec3> worldCoreVertices
     return ::iceDEM::ConvexPolyhedron::hull(pts);
 }
 
+
+//- d.set(key, value) with the value's doubles exact: a dictionary entry is
+//  made through text at the default precision (writePrecision), which
+//  would round what a restart reads back
+template<class T>
+void setExact(Foam::dictionary& d, const Foam::word& key, const T& value)
+{
+    const unsigned precision = Foam::IOstream::defaultPrecision();
+    Foam::IOstream::defaultPrecision(17);
+    d.set(key, value);
+    Foam::IOstream::defaultPrecision(precision);
+}
+
 } // End anonymous namespace
 
 
@@ -498,8 +511,8 @@ void Foam::iceDEMCoupling::publishLoad()
     momentField_->value() = pendingMoment_;
 
     dictionary& cs = case_->couplingState();
-    cs.set("iceLoadForce", pendingForce_);
-    cs.set("iceLoadMoment", pendingMoment_);
+    setExact(cs, "iceLoadForce", pendingForce_);
+    setExact(cs, "iceLoadMoment", pendingMoment_);
 }
 
 
@@ -667,6 +680,22 @@ Foam::iceDEMCoupling::iceDEMCoupling
     }
     case_->start();
     findPieces();       // a restart with inflow/outflow moves them
+
+    // The design configuration: captured from the motion at the start of a
+    // run, where the rotation is the initial one, and kept in the state,
+    // so a restart uses the same doubles (recovered at a rotated pose they
+    // would differ by round-off, and the pieces' poses with them)
+    if (motion_)
+    {
+        dictionary& cs = case_->couplingState();
+        if (case_->restarted() && cs.found("structureCentreOfRotation0"))
+        {
+            CoR0_ = cs.get<vector>("structureCentreOfRotation0");
+            Q0init_ = cs.get<tensor>("structureOrientation0");
+        }
+        setExact(cs, "structureCentreOfRotation0", CoR0_);
+        setExact(cs, "structureOrientation0", Q0init_);
+    }
 
     if (flow_ && flow_->twoWay())
     {
@@ -943,9 +972,9 @@ void Foam::iceDEMCoupling::solve()
         flow_->getFaceDrag(nFaces, F, K);
         dictionary& cs = case_->couplingState();
         cs.set("dragFaces", nFaces);
-        cs.set("dragFaceForces", F);
-        cs.set("dragFaceCoefficients", K);
-        cs.set("dragSourceInterval", reaction_->interval());
+        setExact(cs, "dragFaceForces", F);
+        setExact(cs, "dragFaceCoefficients", K);
+        setExact(cs, "dragSourceInterval", reaction_->interval());
     }
 
     if (loadFile_.valid())

@@ -87,7 +87,8 @@ bool Foam::completeTime::atomicWrite
     const regIOobject& io,
     IOstream::streamFormat fmt,
     IOstream::versionNumber ver,
-    IOstream::compressionType cmp
+    IOstream::compressionType cmp,
+    const unsigned precision
 )
 {
     mkDir(io.path());
@@ -103,6 +104,7 @@ bool Foam::completeTime::atomicWrite
                 << "Could not open " << tmp << " for writing" << endl;
             return false;
         }
+        if (precision > 0) os.precision(precision);
         ok = io.writeHeader(os) && io.writeData(os);
         IOobject::writeEndDivider(os);
         ok = ok && os.good();

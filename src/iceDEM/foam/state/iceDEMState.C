@@ -233,6 +233,8 @@ void Foam::iceDEMState::applyInflowOutflow(::iceDEM::World& world) const
     s.strips = integerOf(d, "strips", d.get<scalar>("strips"), 0, 1LL << 52);
     s.nextId = integerOf(d, "nextId", d.get<scalar>("nextId"), -1, 1LL << 31);
     s.lastUpdate = d.get<scalar>("lastUpdate");
+    // States written before the strips kept their gap: 0 (as they ran)
+    s.gap = d.getOrDefault<scalar>("stripGap", 0);
 
     // The inserted floes: (id zBottom thickness radius x0 y0 x1 y1 ...)
     const List<scalarList> rows(d.get<List<scalarList>>("floes"));
@@ -315,6 +317,7 @@ void Foam::iceDEMState::writeInflowOutflow(Ostream& os) const
     os.writeEntry("strips", scalar(s.strips));
     os.writeEntry("nextId", scalar(s.nextId));
     os.writeEntry("lastUpdate", s.lastUpdate);
+    os.writeEntry("stripGap", s.gap);
 
     labelList ids(w.bodies().size());
     forAll(ids, i)

@@ -127,13 +127,21 @@ void Foam::structureMotion::write() const
             false
         )
     );
+    // 17 digits: the state's vectors and tensors become dictionary entries
+    // through text (at the default precision, writePrecision) and are
+    // written as text even in binary format; a restart must read back the
+    // doubles of the uninterrupted run
+    const unsigned precision = IOstream::defaultPrecision();
+    IOstream::defaultPrecision(17);
     motion_->state().write(state);
+    IOstream::defaultPrecision(precision);
     completeTime::atomicWrite
     (
         state,
         runTime_.writeFormat(),
         runTime_.writeVersion(),
-        runTime_.writeCompression()
+        runTime_.writeCompression(),
+        17
     );
 }
 
