@@ -17,7 +17,8 @@ void computeWaterFrame
     const Mat3& R,
     const Vec3& x,
     double level,
-    WaterFrame& frame
+    WaterFrame& frame,
+    bool withDry
 )
 {
     frame.hasVolume = false;
@@ -57,6 +58,16 @@ void computeWaterFrame
         return;
     }
 
+    // Both sides in one pass where a wind reads the dry one and the plane
+    // cuts the body (else frameDry, when asked)
+    const bool both = withDry && hMax > 0;
+    if (both)
+    {
+        frame.nDry = 0;
+        frame.dryBegin[0] = 0;
+    }
+    int endDry = 0;
+
     constexpr int cap = SubmergedFace::maxVertices;
     Vec3 p[cap];
     double s[cap];
@@ -69,15 +80,64 @@ void computeWaterFrame
             // Beyond the clip's buffers: the general paths
             frame.framed = false;
             frame.nWet = 0;
+            frame.nDry = 0;
             return;
         }
-        int nBelow = 0;
+        int nBelow = 0, nAbove = 0;
         for (int k = 0; k < n; ++k)
         {
             const int v = P.faceVertex(f, k);
             p[k] = frame.r[v];
             s[k] = frame.h[v];
             nBelow += s[k] < 0;
+            nAbove += s[k] > 0;
+        }
+        if (both && nAbove > 0)
+        {
+            // The dry polygon, as frameDry makes it
+            Vec3* qd = frame.dryVertex + endDry;
+            int md = n;
+            if (nAbove == n)
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    qd[k] = p[k];
+                }
+            }
+            else if (nBelow > 0)
+            {
+                // Cut by the waterline: wet and dry polygons in one split
+                Vec3* q = frame.wetVertex + end;
+                double* hq = frame.wetHeight + end;
+                int m;
+                splitPolygon(p, s, n, q, hq, m, qd, md);
+                if (md > 0)
+                {
+                    endDry += md;
+                    frame.dryFace[frame.nDry] = f;
+                    frame.dryBegin[++frame.nDry] = endDry;
+                }
+                if (m > 0)
+                {
+                    end += m;
+                    frame.wetFace[frame.nWet] = f;
+                    frame.wetBegin[++frame.nWet] = end;
+                }
+                continue;
+            }
+            else
+            {
+                double sNeg[cap];
+                for (int k = 0; k < n; ++k) sNeg[k] = -s[k];
+                double sOut[cap];
+                md = clipNegative(p, sNeg, n, qd, sOut);
+            }
+            if (md > 0)
+            {
+                endDry += md;
+                frame.dryFace[frame.nDry] = f;
+                frame.dryBegin[++frame.nDry] = endDry;
+            }
         }
         if (nBelow == 0)
         {
@@ -104,6 +164,11 @@ void computeWaterFrame
         frame.wetFace[frame.nWet] = f;
         frame.wetBegin[++frame.nWet] = end;
     }
+    if (both)
+    {
+        frame.hasDry = true;
+        frame.dryValid = true;
+    }
 }
 
 
@@ -113,6 +178,11 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     static thread_local WaterFrame frame;
 
     const Body& b = world.bodies()[i];
+    // Whether a wind read the last frame's dry side (of this world): then
+    // it will read this one's too, and both sides come from one split
+    // (the same polygons as frameDry's, so the path taken changes nothing)
+    const bool withDry =
+        frame.hasDry && frame.worldInstance == world.instance();
     if
     (
         frame.worldInstance == world.instance()
@@ -134,7 +204,8 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     frame.worldInstance = -1;
     computeWaterFrame
     (
-        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame
+        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame,
+        withDry
     );
     frame.worldInstance = world.instance();
     frame.evaluation = world.evaluation();
