@@ -436,9 +436,12 @@ void addFacetDrag
     Vec3 lead[cap + 1];
     double sl[cap + 1];
     int nLead = 0;
+    // u_n = w.n + (omega x r).n = w.n + r.(n x omega): one dot per vertex
+    const double wn = w.dot(nrm);
+    const Vec3 nxo = nrm.cross(omega);
     for (int k = 0; k < m; ++k)
     {
-        s[k] = -(w + omega.cross(q[k])).dot(nrm);
+        s[k] = -(wn + q[k].dot(nxo));
         nLead += s[k] < 0;
     }
     if (nLead == 0)
