@@ -857,7 +857,10 @@ void hydroAccuracy(const Field& f, const Options& o)
     const double Cf = defaults.formCoefficient, Cs = defaults.skinCoefficient;
     const Drag exactForm = drag(DragIntegration::exact, 0, Cf, 0);
     const Drag exactSkin = drag(DragIntegration::exact, 0, 0, Cs);
-    ErrorStats form2, skin2, skinRule, skinClosed, skinForced, skinSwitch, volume;
+    ErrorStats form2, skin2, skinRule, skinClosed, skinForced, skinSwitch, skinExpansion, volume;
+    // Wet bottom polygons whose centre of rotation lies beyond
+    // skinUniformRatio radii (skinIntegral takes the expansion there)
+    long bottoms = 0, farBottoms = 0;
     // The wind (with -wind U): sampled at subdivision 1 (the default until
     // issue 16's third round) and 0, and the exact integration, against the
     // closed form (form drag) and the Richardson limit (skin drag)
@@ -904,7 +907,8 @@ void hydroAccuracy(const Field& f, const Options& o)
         const Vec3 omega = b.omega();
         const Vec3 w = b.v - Vec3(kCurrent, 0, 0);
         Vec3 Ic = Vec3::Zero(), Irc = Vec3::Zero(), Iq = Vec3::Zero(),
-            Irq = Vec3::Zero(), Is = Vec3::Zero(), Irs = Vec3::Zero();
+            Irq = Vec3::Zero(), Is = Vec3::Zero(), Irs = Vec3::Zero(),
+            Ix = Vec3::Zero(), Irx = Vec3::Zero();
         for (int k = 0; k < frame.nWet; ++k)
         {
             const Vec3 n = frame.R*P.faces()[frame.wetFace[k]].normal;
@@ -915,12 +919,25 @@ void hydroAccuracy(const Field& f, const Options& o)
             if (skinIntegralClosedForm(q, m, n, w, omega, I, Ir)) { Ic += I; Irc += Ir; }
             if (skinIntegralConical(q, m, n, w, omega, I, Ir)) { Iq += I; Irq += Ir; }
             if (skinIntegral(q, m, n, w, omega, I, Ir)) { Is += I; Irs += Ir; }
+            if (skinIntegralExpansion(q, m, n, w, omega, I, Ir)) { Ix += I; Irx += Ir; }
+            // Where skinIntegral switches (its criterion, Drag.C)
+            Vec3 cq = Vec3::Zero();
+            for (int j = 0; j < m; ++j) cq += q[j];
+            cq /= m;
+            double a2 = 0;
+            for (int j = 0; j < m; ++j) a2 = std::max(a2, (q[j] - cq).squaredNorm());
+            const Vec3 Uc = w + omega.cross(cq);
+            const Vec3 Ut = Uc - Uc.dot(n)*n;
+            const double Om = omega.dot(n);
+            ++bottoms;
+            farBottoms += !(Om*Om*a2*skinUniformRatio*skinUniformRatio > Ut.squaredNorm());
         }
         // As forces: F = -1/2 rho C_s I
         const double c = -0.5*kWaterDensity*Cs;
         skinRule.add(relError(c*Iq, c*Irq, Sr, SMr, L));
         skinForced.add(relError(c*Ic, c*Irc, Sr, SMr, L));
         skinSwitch.add(relError(c*Is, c*Irs, Sr, SMr, L));
+        skinExpansion.add(relError(c*Ix, c*Irx, Sr, SMr, L));
 
         if (o.wind != 0)
         {
@@ -963,6 +980,10 @@ void hydroAccuracy(const Field& f, const Options& o)
     skinRule.print("skin drag, 6-point rule everywhere vs Richardson(3, 4)");
     skinForced.print("skin drag, closed form everywhere vs Richardson(3, 4)");
     skinSwitch.print("skin drag, skinIntegral (the drag's choice) vs Richardson");
+    skinExpansion.print("skin drag, expansion everywhere vs Richardson(3, 4)");
+    std::printf("#   wet bottoms beyond %g radii (the expansion's part): %ld of %ld"
+        " (centroid's vertex mean as the centre: an estimate)\n",
+        skinUniformRatio, farBottoms, bottoms);
     volume.print("buoyancy: volume + centre/R, frame vs tetrahedra");
     if (o.wind != 0)
     {

@@ -12,6 +12,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "hydro/WaterClip.H"
+#include "hydro/WaterFrame.H"
 #include "geometry/DilatedShape.H"
 
 #include <gtest/gtest.h>
@@ -366,6 +367,106 @@ TEST(WaterClip, clipNegativeOfASquare)
     // Nothing negative, only a vertex on zero: nothing
     const double u[4] = {0, 1, 2, 1};
     EXPECT_EQ(clipNegative(p, u, 4, q, sq), 0);
+}
+
+
+// splitPolygon: both sides of a polygon in one pass, bit for bit the two
+// clipNegative calls (s and -s) it replaces in the water frame; and the
+// frame's dry polygons made in the wet pass (a wind reads them) equal
+// frameDry's on random poses, vertices on the plane included
+TEST(WaterClip, splitPolygonEqualsBothClips)
+{
+    std::mt19937 gen(1618);
+    std::uniform_real_distribution<double> U(-1, 1);
+    int cut = 0;
+    for (int trial = 0; trial < 2000; ++trial)
+    {
+        const int n = 3 + trial % 8;
+        Vec3 p[16];
+        double s[16], sMinus[16];
+        for (int k = 0; k < n; ++k)
+        {
+            const double th = 2*M_PI*(k + 0.4*std::abs(U(gen)))/n;
+            p[k] = Vec3(3*std::cos(th), 2*std::sin(th), U(gen));
+            // Linear s, with vertices exactly on zero now and then
+            s[k] = trial % 5 == 0 && k % 3 == 0
+                ? 0 : p[k].x()*U(gen) + 0.5*p[k].y() + 0.3;
+            sMinus[k] = -s[k];
+        }
+        Vec3 a[17], b[17], c[17], d[17];
+        double sa[17], sb[17], sc[17];
+        const int ma = clipNegative(p, s, n, a, sa);
+        const int mb = clipNegative(p, sMinus, n, b, sb);
+        int mc = -1, md = -1;
+        splitPolygon(p, s, n, c, sc, mc, d, md);
+        ASSERT_EQ(mc, ma) << "trial " << trial;
+        ASSERT_EQ(md, mb) << "trial " << trial;
+        for (int k = 0; k < ma; ++k)
+        {
+            EXPECT_EQ(c[k], a[k]);
+            EXPECT_EQ(sc[k], sa[k]);
+        }
+        for (int k = 0; k < mb; ++k)
+        {
+            EXPECT_EQ(d[k], b[k]);
+        }
+        cut += ma > 0 && mb > 0;
+    }
+    EXPECT_GT(cut, 500);
+
+    const DilatedShape floe
+    (
+        ConvexPolyhedron::prism
+        (
+            {{0, 0}, {3, 0.2}, {3.5, 2}, {1.2, 3.1}, {-0.3, 1.4}}, -0.4, 0.9
+        ),
+        0.1
+    );
+    PolyhedronBuffer buffer;
+    const PolyhedronView P = floe.outer(buffer);
+    WaterFrame lazy, both;
+    int bothPoses = 0;
+    for (int trial = 0; trial < 1000; ++trial)
+    {
+        const Mat3 R = trial % 2
+            ? Mat3(Eigen::AngleAxisd
+              (
+                  0.2*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()
+              ).toRotationMatrix())
+            : randomRotation(gen);
+        const Vec3 x(U(gen), U(gen), 1.5*U(gen));
+        // Now and then the level through a vertex
+        const double level = trial % 7 == 0
+            ? (R*P.vertices()[trial % P.vertices().size()] + x).z()
+            : 0.5*U(gen);
+        computeWaterFrame(P, R, x, level, lazy);
+        computeWaterFrame(P, R, x, level, both, true);
+        ASSERT_EQ(lazy.nWet, both.nWet);
+        for (int k = 0; k <= lazy.nWet; ++k)
+        {
+            ASSERT_EQ(lazy.wetBegin[k], both.wetBegin[k]);
+        }
+        for (int k = 0; k < lazy.wetBegin[lazy.nWet]; ++k)
+        {
+            EXPECT_EQ(lazy.wetVertex[k], both.wetVertex[k]);
+            EXPECT_EQ(lazy.wetHeight[k], both.wetHeight[k]);
+        }
+        bothPoses += both.hasDry;
+        ASSERT_TRUE(frameDry(P, lazy));
+        ASSERT_TRUE(frameDry(P, both));
+        ASSERT_EQ(lazy.nDry, both.nDry) << "trial " << trial;
+        for (int k = 0; k < lazy.nDry; ++k)
+        {
+            ASSERT_EQ(lazy.dryFace[k], both.dryFace[k]);
+            ASSERT_EQ(lazy.dryBegin[k + 1], both.dryBegin[k + 1]);
+        }
+        for (int k = 0; k < lazy.dryBegin[lazy.nDry]; ++k)
+        {
+            EXPECT_EQ(lazy.dryVertex[k], both.dryVertex[k]);
+        }
+    }
+    // Most poses cut the floe: their dry side came from the wet pass
+    EXPECT_GT(bothPoses, 500);
 }
 
 

@@ -11,13 +11,133 @@
 namespace iceDEM
 {
 
+namespace
+{
+
+//- The wet polygons of every face into frame (and with Dry the dry ones,
+//  as frameDry makes them, from the same split of each cut face); a face
+//  beyond the clip's buffers leaves the frame unframed
+template<bool Dry>
+void frameFaces(const PolyhedronView& P, WaterFrame& frame)
+{
+    const int nf = static_cast<int>(P.faces().size());
+    if (Dry)
+    {
+        frame.nDry = 0;
+        frame.dryBegin[0] = 0;
+    }
+    int endDry = 0;
+
+    constexpr int cap = SubmergedFace::maxVertices;
+    Vec3 p[cap];
+    double s[cap];
+    int end = 0;
+    for (int f = 0; f < nf; ++f)
+    {
+        const int n = P.faces()[f].count;
+        if (n + 1 > cap)
+        {
+            // Beyond the clip's buffers: the general paths
+            frame.framed = false;
+            frame.nWet = 0;
+            frame.nDry = 0;
+            return;
+        }
+        int nBelow = 0, nAbove = 0;
+        for (int k = 0; k < n; ++k)
+        {
+            const int v = P.faceVertex(f, k);
+            p[k] = frame.r[v];
+            s[k] = frame.h[v];
+            nBelow += s[k] < 0;
+            if (Dry) nAbove += s[k] > 0;
+        }
+        if (Dry && nAbove > 0)
+        {
+            // The dry polygon, as frameDry makes it
+            Vec3* qd = frame.dryVertex + endDry;
+            int md = n;
+            if (nAbove == n)
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    qd[k] = p[k];
+                }
+            }
+            else if (nBelow > 0)
+            {
+                // Cut by the waterline: wet and dry polygons in one split
+                Vec3* q = frame.wetVertex + end;
+                double* hq = frame.wetHeight + end;
+                int m;
+                splitPolygon(p, s, n, q, hq, m, qd, md);
+                if (md > 0)
+                {
+                    endDry += md;
+                    frame.dryFace[frame.nDry] = f;
+                    frame.dryBegin[++frame.nDry] = endDry;
+                }
+                if (m > 0)
+                {
+                    end += m;
+                    frame.wetFace[frame.nWet] = f;
+                    frame.wetBegin[++frame.nWet] = end;
+                }
+                continue;
+            }
+            else
+            {
+                // Vertices on the plane, none below: the dry clip alone
+                double sNeg[cap];
+                double sOut[cap];
+                for (int k = 0; k < n; ++k) sNeg[k] = -s[k];
+                md = clipNegative(p, sNeg, n, qd, sOut);
+            }
+            if (md > 0)
+            {
+                endDry += md;
+                frame.dryFace[frame.nDry] = f;
+                frame.dryBegin[++frame.nDry] = endDry;
+            }
+        }
+        if (nBelow == 0)
+        {
+            continue;
+        }
+        Vec3* q = frame.wetVertex + end;
+        double* hq = frame.wetHeight + end;
+        int m = n;
+        if (nBelow == n)
+        {
+            // A face entirely below is its own wet polygon
+            for (int k = 0; k < n; ++k)
+            {
+                q[k] = p[k];
+                hq[k] = s[k];
+            }
+        }
+        else
+        {
+            m = clipNegative(p, s, n, q, hq);
+            if (m == 0) continue;
+        }
+        end += m;
+        frame.wetFace[frame.nWet] = f;
+        frame.wetBegin[++frame.nWet] = end;
+    }
+}
+
+} // anonymous namespace
+
+
 void computeWaterFrame
 (
     const PolyhedronView& P,
     const Mat3& R,
     const Vec3& x,
     double level,
-    WaterFrame& frame
+    WaterFrame& frame,
+    bool withDry
 )
 {
     frame.hasVolume = false;
@@ -57,52 +177,18 @@ void computeWaterFrame
         return;
     }
 
-    constexpr int cap = SubmergedFace::maxVertices;
-    Vec3 p[cap];
-    double s[cap];
-    int end = 0;
-    for (int f = 0; f < nf; ++f)
+    // Both sides in one pass where a wind reads the dry one and the plane
+    // cuts the body (else frameDry, when asked); the windless loop is
+    // compiled without the dry side's work
+    if (withDry && hMax > 0)
     {
-        const int n = P.faces()[f].count;
-        if (n + 1 > cap)
-        {
-            // Beyond the clip's buffers: the general paths
-            frame.framed = false;
-            frame.nWet = 0;
-            return;
-        }
-        int nBelow = 0;
-        for (int k = 0; k < n; ++k)
-        {
-            const int v = P.faceVertex(f, k);
-            p[k] = frame.r[v];
-            s[k] = frame.h[v];
-            nBelow += s[k] < 0;
-        }
-        if (nBelow == 0)
-        {
-            continue;
-        }
-        Vec3* q = frame.wetVertex + end;
-        double* hq = frame.wetHeight + end;
-        int m = n;
-        if (nBelow == n)
-        {
-            // A face entirely below is its own wet polygon
-            for (int k = 0; k < n; ++k)
-            {
-                q[k] = p[k];
-                hq[k] = s[k];
-            }
-        }
-        else
-        {
-            m = clipNegative(p, s, n, q, hq);
-            if (m == 0) continue;
-        }
-        end += m;
-        frame.wetFace[frame.nWet] = f;
-        frame.wetBegin[++frame.nWet] = end;
+        frameFaces<true>(P, frame);
+        frame.hasDry = frame.framed;
+        frame.dryValid = frame.framed;
+    }
+    else
+    {
+        frameFaces<false>(P, frame);
     }
 }
 
@@ -113,6 +199,11 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     static thread_local WaterFrame frame;
 
     const Body& b = world.bodies()[i];
+    // Whether a wind read the last frame's dry side (of this world): then
+    // it will read this one's too, and both sides come from one split
+    // (the same polygons as frameDry's, so the path taken changes nothing)
+    const bool withDry =
+        frame.hasDry && frame.worldInstance == world.instance();
     if
     (
         frame.worldInstance == world.instance()
@@ -134,7 +225,8 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     frame.worldInstance = -1;
     computeWaterFrame
     (
-        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame
+        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame,
+        withDry
     );
     frame.worldInstance = world.instance();
     frame.evaluation = world.evaluation();
