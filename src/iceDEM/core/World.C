@@ -38,6 +38,10 @@ World::World(const WorldSettings& settings)
     {
         throw Error("parallelEdgeSin must be in (0, 1)", "parallelEdgeSin");
     }
+    if (!(settings_.mergeSharePower >= 1 && settings_.mergeSharePower <= 16))
+    {
+        throw Error("mergeSharePower must be in [1, 16]", "mergeSharePower");
+    }
     if (!(settings_.contactCheckVelocity > 0))
     {
         throw Error("contactCheckVelocity must be > 0", "contactCheckVelocity");

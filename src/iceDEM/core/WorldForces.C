@@ -122,6 +122,7 @@ int World::findPairContacts
     const BodyView B = viewOfJ(p, translated);
     NarrowPhaseSettings nps;
     nps.parallelEdgeSin = settings_.parallelEdgeSin;
+    nps.mergeSharePower = settings_.mergeSharePower;
     nps.featureSkin = featureSkin_;
     return findContacts(A, B, nps, axis, found, maxContactsPerPair, features, separation);
 }
