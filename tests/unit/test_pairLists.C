@@ -249,8 +249,9 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
             list0.t, list0.Q, r.t, r.Q, SA.boundingRadius(), SB.boundingRadius()
         );
         const double eta = 1e-6*(SA.boundingRadius() + SB.boundingRadius());
-        // Its entries (their certificates renewed) in the buffer either way
-        EXPECT_EQ(list.entries, buffer1);
+        // Its entries in the buffer (rebuilt, or certificates renewed) or
+        // where they were
+        EXPECT_TRUE(list.entries == buffer1 || list.entries == buffer0);
         if (list.t == list0.t && list.Q.coeffs() == list0.Q.coeffs())
         {
             ++kept;

@@ -206,10 +206,12 @@ int findContacts
     if (useList())
     {
         // 2-3. The listed feature pairs, in the full search's order, those
-        //     certified apart skipped; their certificates renewed into the
-        //     caller's buffer
-        search.evaluateList(list->entries, list->count, list->buffer, motion, motionMax);
-        list->entries = list->buffer;
+        //     certified apart skipped; their lapsed certificates renewed
+        //     into the caller's buffer (if any)
+        if (search.evaluateList(list->entries, list->count, list->buffer, motion, motionMax))
+        {
+            list->entries = list->buffer;
+        }
     }
     else
     {
