@@ -784,14 +784,14 @@ RunResult runOnce
             " topologies %.0f B), world vertices"
             " and omega %.0f B; contact state %.0f B per floe"
             " (%.2f candidate pairs per floe x ContactPair %zu B + pools:"
-            " StoredContact %zu B per contact, feature lists %zu B + 4 B per entry)\n",
+            " StoredContact %zu B per contact, feature lists %zu B + %zu B per entry)\n",
             f.floes.size(), r.rssPerFloe, r.peakKB/1024.0,
             sizeof(Body), (shapeBytes + topologyBytes)/n, sizeof(DilatedShape),
             topologies.size(), topologyBytes/n,
             24.0*nv + sizeof(Vec3),
             world->contactStateBytes()/nF,
             pairs/nF, sizeof(ContactPair),
-            sizeof(StoredContact), sizeof(StoredFeatureList)
+            sizeof(StoredContact), sizeof(StoredFeatureList), sizeof(FeaturePairEntry)
         );
     }
     return r;

@@ -159,7 +159,11 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
     // less or more than the skin. The list is kept exactly when the
     // relative motion is below the skin (the world motion of each body
     // being hundreds of metres), and the contacts are those of a full
-    // search bit for bit, kept list or not.
+    // search bit for bit, kept list or not. A kept list skips the entries
+    // whose certificate exceeds the relative motion (NarrowPhase.H, entry
+    // certificates): its contacts and its next axis (the closest pair when
+    // nothing touches) are those of the same list walked without
+    // certificates, bit for bit.
     const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.1, 0.9);
     NarrowPhaseSettings nps;
     nps.featureSkin = 0.05;
@@ -179,8 +183,10 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
     const Placed A0(SA, Vec3::Zero(), Quat::Identity());
     const Placed B0(SB, Vec3(xB, 0.1, 0.0), qB);
 
-    std::uint32_t buffer0[FeaturePairList::capacity];
-    std::uint32_t buffer1[FeaturePairList::capacity];
+    FeaturePairEntry buffer0[FeaturePairList::capacity];
+    FeaturePairEntry buffer1[FeaturePairList::capacity];
+    FeaturePairEntry buffer2[FeaturePairList::capacity];
+    FeaturePairEntry bare[FeaturePairList::capacity];
     FeaturePairList list0;
     list0.buffer = buffer0;
     FoundContact found[maxOut];
@@ -189,10 +195,19 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
     ASSERT_GT(n0, 0);
     ASSERT_GT(list0.count, 0);
     ASSERT_EQ(list0.entries, buffer0);
+    // The same entries without certificates
+    int certified = 0;
+    for (int k = 0; k < list0.count; ++k)
+    {
+        bare[k] = FeaturePairEntry{list0.entries[k].key, 0};
+        certified += list0.entries[k].margin > 0;
+    }
+    EXPECT_GT(certified, list0.count/4);
 
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
-    int kept = 0, rebuilt = 0, withContacts = 0;
+    int kept = 0, rebuilt = 0, withContacts = 0, walksSkipping = 0, keptWithout = 0;
+    long skipped = 0;
     for (int trial = 0; trial < 400; ++trial)
     {
         // A large common rigid motion
@@ -234,19 +249,49 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
             list0.t, list0.Q, r.t, r.Q, SA.boundingRadius(), SB.boundingRadius()
         );
         const double eta = 1e-6*(SA.boundingRadius() + SB.boundingRadius());
-        if (list.entries == buffer0)
+        // Its entries in the buffer (rebuilt, or certificates renewed) or
+        // where they were
+        EXPECT_TRUE(list.entries == buffer1 || list.entries == buffer0);
+        if (list.t == list0.t && list.Q.coeffs() == list0.Q.coeffs())
         {
             ++kept;
             EXPECT_LT(relative, nps.featureSkin - eta) << "trial " << trial;
-            EXPECT_EQ(list.count, list0.count);
-            EXPECT_EQ(list.t, list0.t);
-            EXPECT_EQ(list.Q.coeffs(), list0.Q.coeffs());
+            ASSERT_EQ(list.count, list0.count);
+            // The same feature pairs (kind | a | b; bit 28, the flag of a
+            // certificate by distance, may change with the certificate)
+            const std::uint32_t pairBits = ~(std::uint32_t(1) << 28);
+            int skips = 0;
+            for (int k = 0; k < list0.count; ++k)
+            {
+                EXPECT_EQ(list.entries[k].key & pairBits, list0.entries[k].key & pairBits);
+                skips += relative < list0.entries[k].margin;
+            }
+            skipped += skips;
+            walksSkipping += skips > 0;
+
+            // The same list without certificates: the same contacts and
+            // the same next axis
+            FeaturePairList without = list0;
+            without.entries = bare;
+            without.buffer = buffer2;
+            without.touched = true;
+            Vec3 axisWithout = axis;
+            FoundContact withoutFound[maxOut];
+            const int nWithout = findContacts
+            (
+                A1.view(), B1.view(), nps, axisWithout, withoutFound, maxOut, &without
+            );
+            expectSameContacts(withList, nList, withoutFound, nWithout);
+            keptWithout += nWithout == 0;
+            for (int c = 0; c < 3; ++c)
+            {
+                EXPECT_EQ(axisList[c], axisWithout[c]) << "trial " << trial;
+            }
         }
         else
         {
             ++rebuilt;
             EXPECT_GE(relative, nps.featureSkin - eta) << "trial " << trial;
-            EXPECT_EQ(list.entries, buffer1);
         }
         // The relative pose is what the list sees: B's centroid moved in
         // A's frame by the shift applied there
@@ -256,4 +301,13 @@ TEST(featurePairLists, keptUnderACommonRigidMotionWithTheContactsOfAFullSearch)
     EXPECT_GT(kept, 100);
     EXPECT_GT(rebuilt, 100);
     EXPECT_GT(withContacts, 200);
+    // Certificates skipped entries in most kept walks
+    EXPECT_GT(walksSkipping, kept/2);
+    EXPECT_GT(skipped, 2*kept);
+    std::printf
+    (
+        "kept %d, rebuilt %d; in the kept walks %ld entries skipped of %d x %d;"
+        " %d kept walks without contact\n",
+        kept, rebuilt, skipped, kept, list0.count, keptWithout
+    );
 }

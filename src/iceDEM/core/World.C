@@ -648,7 +648,7 @@ std::size_t World::contactStateBytes() const
     {
         n += S.contacts.capacity()*sizeof(StoredContact)
            + S.lists.capacity()*sizeof(StoredFeatureList)
-           + S.entries.capacity()*sizeof(std::uint32_t);
+           + S.entries.capacity()*sizeof(FeaturePairEntry);
     }
     return n;
 }

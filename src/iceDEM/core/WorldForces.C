@@ -231,11 +231,11 @@ void World::pairForces(double dtTangential)
         PairScratch& S = scratch_[thread];
 
         FoundContact found[maxContactsPerPair];
-        std::uint32_t listBuffer[FeaturePairList::capacity];
+        FeaturePairEntry listBuffer[FeaturePairList::capacity];
         // The pools of the last evaluation, read only in this loop
         const StoredContact* oldContacts = nl.contacts().data();
         const StoredFeatureList* oldLists = nl.featureLists().data();
-        const std::uint32_t* oldEntries = nl.listEntries().data();
+        const FeaturePairEntry* oldEntries = nl.listEntries().data();
 
         // A pair's new feature-pair list into this thread's scratch; until
         // the pool pass, the pair's featureList is its index there
@@ -243,7 +243,7 @@ void World::pairForces(double dtTangential)
         (
             ContactPair& p,
             StoredFeatureList L,
-            const std::uint32_t* from
+            const FeaturePairEntry* from
         )
         {
             p.featureList = static_cast<int>(S.lists.size());
@@ -423,7 +423,7 @@ void World::pairForces(double dtTangential)
             p.featureList = offset.lists++;
             StoredFeatureList& L = nl.featureLists()[p.featureList];
             L = T.lists[l];
-            const std::uint32_t* fromEntry = T.entries.data() + L.firstEntry;
+            const FeaturePairEntry* fromEntry = T.entries.data() + L.firstEntry;
             std::copy(fromEntry, fromEntry + L.count, nl.listEntries().data() + offset.entries);
             L.firstEntry = offset.entries;
             offset.entries += L.count;

@@ -114,8 +114,13 @@ int findContacts
     // depends on the present relative pose only, not on the path, nor on
     // the pair's common motion: NarrowPhase.H); evaluated when
     // the first axis does not separate the cores
+    // The motion bound in both frames: the smaller decides (the list holds
+    // while it is below featureSkin - eta, and skips an entry while it is
+    // below the entry's certificate), the larger is charged to the
+    // certificates renewed by the walk
     if (!(s.featureSkin > 0)) list = nullptr;
     int listHolds = -1;
+    double motion = 0, motionMax = 0;
     auto useList = [&]()
     {
         if (listHolds < 0)
@@ -125,11 +130,12 @@ int findContacts
             {
                 const RelativePose now = relativePose(A, B);
                 const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-                listHolds = relativeMotionBelow
-                (
-                    list->t, list->Q, now.t, now.Q,
-                    SA.boundingRadius(), SB.boundingRadius(), s.featureSkin - eta
-                );
+                const double chord = relativeChord(list->Q, now.Q);
+                const double mB = motionOfBInA(list->t, now.t, chord, SB.boundingRadius());
+                const double mA = motionOfAInB(list->t, list->Q, now.t, now.Q, chord, SA.boundingRadius());
+                motion = std::min(mB, mA);
+                motionMax = std::max(mB, mA);
+                listHolds = motion < s.featureSkin - eta;
             }
         }
         return listHolds == 1;
@@ -199,8 +205,13 @@ int findContacts
 
     if (useList())
     {
-        // 2-3. The listed feature pairs, in the full search's order
-        search.evaluateList(list->entries, list->count);
+        // 2-3. The listed feature pairs, in the full search's order, those
+        //     certified apart skipped; their lapsed certificates renewed
+        //     into the caller's buffer (if any)
+        if (search.evaluateList(list->entries, list->count, list->buffer, motion, motionMax))
+        {
+            list->entries = list->buffer;
+        }
     }
     else
     {

@@ -360,7 +360,7 @@ std::size_t NeighbourList::bytes() const
     return pairs_.capacity()*sizeof(ContactPair)
         + contacts_.capacity()*sizeof(StoredContact)
         + lists_.capacity()*sizeof(StoredFeatureList)
-        + listEntries_.capacity()*sizeof(std::uint32_t)
+        + listEntries_.capacity()*sizeof(FeaturePairEntry)
         + (bodyStart_.capacity() + bodyPairs_.capacity())*sizeof(int);
 }
 

@@ -194,6 +194,7 @@ void Foam::functionObjects::iceLoadStatistics::connect()
     }
 
     c.addStepObserver(acc_);
+    P0_ = floeMomentum();
 
     Info<< type() << ' ' << name() << ": structure bodies "
         << acc_->bodies.size() << ", walls " << acc_->walls.size()
@@ -201,6 +202,20 @@ void Foam::functionObjects::iceLoadStatistics::connect()
     if (autoTransient_) Info<< "auto (MSER-5)";
     else Info<< transient_ << " s";
     Info<< ", " << batches_ << " batches" << endl;
+}
+
+
+::iceDEM::Vec3
+Foam::functionObjects::iceLoadStatistics::floeMomentum() const
+{
+    const ::iceDEM::World& w =
+        time_.lookupObject<iceDEMState>("iceDEMState").demCase().world();
+    ::iceDEM::Vec3 P = ::iceDEM::Vec3::Zero();
+    for (const ::iceDEM::Body& b : w.bodies())
+    {
+        if (b.isFree()) P += b.mass*b.v;
+    }
+    return P;
 }
 
 
@@ -293,13 +308,17 @@ void Foam::functionObjects::iceLoadStatistics::openFiles()
         << " halfWidth batchSize lag1 correlated" << endl;
 
     balanceFile_.reset(new OFstream(dir/"forceBalance.dat"));
-    balanceFile_().precision(8);
+    balanceFile_().precision(12);
     balanceFile_()
         << "# mean horizontal load on structure + walls (load) against the"
         << " mean horizontal driving force on the free floes (drive), along"
         << " the direction of the mean driving force [N]" << nl
+        << "# balance: load + momentumRate = drive, momentumRate = (P_end -"
+        << " P_start)/T the change of the floes' momentum over the window"
+        << " [N]; balanceRatio = (load + momentumRate)/drive" << nl
         << "# time samples transientEnd loadX loadY driveX driveY load drive"
-        << " ratio ratioHalfWidth lag1 correlated steady" << endl;
+        << " ratio ratioHalfWidth lag1 correlated steady momentumRate"
+        << " balanceRatio" << endl;
 }
 
 
@@ -407,6 +426,18 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
     const BatchMeansResult bd = batchMeans(diff.data(), n, batches_, confidence_);
     const double load = lx*ex + ly*ey;
     const double ratio = dMag > 0 ? load/dMag : NAN;
+
+    // The floes' momentum change over the window: load + dP/dt = drive
+    double duration = 0;
+    for (size_t k = start; k < t_.size(); ++k) duration += h_[k];
+    double momentumRate = 0;
+    if (n && duration > 0)
+    {
+        const double p0x = start > 0 ? Px_[start - 1] : P0_.x();
+        const double p0y = start > 0 ? Py_[start - 1] : P0_.y();
+        momentumRate = ((Px_.back() - p0x)*ex + (Py_.back() - p0y)*ey)/duration;
+    }
+    const double balance = dMag > 0 ? (load + momentumRate)/dMag : NAN;
     const double ratioHW = dMag > 0 && bd.batches ? bd.halfWidth/dMag : NAN;
 
     double meanF = 0, sdF = 0, maxF = 0, p99F = 0;
@@ -445,7 +476,8 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
         if (defined)
         {
             os  << ratio << ' ' << ratioHW << ' ' << bd.lag1 << ' '
-                << bd.correlated << ' ' << steady;
+                << bd.correlated << ' ' << steady << ' ' << momentumRate
+                << ' ' << balance;
         }
         else if (!(dMag > 0))
         {
@@ -477,14 +509,16 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
         }
         Info<< ", std " << sdF << ", max " << maxF << ", P99 " << p99F << nl
             << "    force balance: load on structure + walls " << load
+            << " N, floes' momentum change dP/dt " << momentumRate
             << " N, driving force on the floes " << dMag << " N";
         if (dMag > 0)
         {
-            Info<< ", ratio " << ratio;
+            Info<< ", load/drive " << ratio;
             if (bd.batches)
             {
                 Info<< " +- " << ratioHW;
             }
+            Info<< ", (load + dP/dt)/drive " << balance;
         }
         if (!steady)
         {
@@ -572,6 +606,7 @@ Foam::functionObjects::iceLoadStatistics::iceLoadStatistics
     connected_(false),
     noCase_(false),
     tensionsFound_(false),
+    P0_(::iceDEM::Vec3::Zero()),
     lastWriteIndex_(-1),
     stopped_(false)
 {
@@ -740,6 +775,10 @@ bool Foam::functionObjects::iceLoadStatistics::execute()
     Dx_.push_back(D.x());
     Dy_.push_back(D.y());
     Dh_.push_back(hypot2(D.x(), D.y()));
+    h_.push_back(h);
+    const ::iceDEM::Vec3 P = floeMomentum();
+    Px_.push_back(P.x());
+    Py_.push_back(P.y());
     if (T.size())
     {
         double tmax = T[0];
