@@ -92,20 +92,6 @@ std::unique_ptr<World> makePeriodicField(int n, unsigned seed)
     return w;
 }
 
-void expectSameState(const World& a, const World& b)
-{
-    ASSERT_EQ(a.bodies().size(), b.bodies().size());
-    for (std::size_t i = 0; i < a.bodies().size(); ++i)
-    {
-        const Body& p = a.bodies()[i];
-        const Body& q = b.bodies()[i];
-        EXPECT_EQ(p.x, q.x) << "body " << i;
-        EXPECT_EQ(p.v, q.v) << "body " << i;
-        EXPECT_EQ(p.L, q.L) << "body " << i;
-        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
-    }
-}
-
 //- Contact pairs through a periodic image with contacts now
 int crossingContacts(const World& w)
 {
@@ -571,26 +557,49 @@ TEST(periodic, voronoiFieldWithAZoneAtHighConcentrationDoesNotTouch)
 namespace
 {
 
-//- A cluster of colliding floes (no walls, no domain) and, optionally, an
-//  idle floe far away (last index)
-std::unique_ptr<World> clusterWithFarFloe(bool far)
+//- Where the idle far floe of collidingCluster goes
+enum class FarFloe { none, first, last };
+
+//- A cluster of colliding floes (the periodic field's floes without its
+//  periodic sides; no walls) with, optionally, floe k = structure fixed as a
+//  structure the others hit, and an idle floe far away (id 1000): first
+//  (index 0, so its removal moves every other index down by one) or last
+std::unique_ptr<World> collidingCluster(FarFloe far, int structure = -1)
 {
     auto w = makePeriodicField(100, 9);
-    // the same floes without periodic sides: rebuild from its bodies
     auto v = std::make_unique<World>(noGravity());
     const int mat = v->addMaterial(ice(1e9));
     v->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
     for (const DilatedShape& s : w->shapes()) v->addShape(s);
+    const auto addFarFloe = [&]
+    {
+        v->addBody
+        (
+            0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0),
+            Vec3::Zero(), BodyMotion::free, 1000
+        );
+    };
+    if (far == FarFloe::first) addFarFloe();
+    int k = 0;
     for (const Body& b : w->bodies())
     {
-        const int i = v->addBody(b.shape, mat, Vec3::Zero());
+        const bool fixed = k == structure;
+        const int i = v->addBody
+        (
+            b.shape, mat, Vec3::Zero(), Quat::Identity(), Vec3::Zero(),
+            Vec3::Zero(), fixed ? BodyMotion::fixed : BodyMotion::free, k
+        );
         Body& t = v->bodies()[i];
-        t.x = b.x; t.q = b.q; t.v = b.v; t.L = b.L;
+        t.x = b.x;
+        t.q = b.q;
+        if (!fixed)
+        {
+            t.v = b.v;
+            t.L = b.L;
+        }
+        ++k;
     }
-    if (far)
-    {
-        v->addBody(0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0));
-    }
+    if (far == FarFloe::last) addFarFloe();
     return v;
 }
 
@@ -602,8 +611,8 @@ TEST(bodiesInRun, removingAnIdleBodyLeavesTheOthersExact)
     // The far floe never touches the cluster: removing it during the run
     // must leave every other floe's trajectory bit for bit that of a run
     // without it (indices keep their order, so do the force sums)
-    auto a = clusterWithFarFloe(false);
-    auto b = clusterWithFarFloe(true);
+    auto a = collidingCluster(FarFloe::none);
+    auto b = collidingCluster(FarFloe::last);
     a->advanceTo(1.0);
     b->advanceTo(0.5);
     EXPECT_GT(b->contactCount(), 0);
@@ -618,8 +627,8 @@ TEST(bodiesInRun, removingAnIdleBodyLeavesTheOthersExact)
 
 TEST(bodiesInRun, insertingAnIdleBodyLeavesTheOthersExact)
 {
-    auto a = clusterWithFarFloe(false);
-    auto b = clusterWithFarFloe(false);
+    auto a = collidingCluster(FarFloe::none);
+    auto b = collidingCluster(FarFloe::none);
     a->advanceTo(1.0);
     b->advanceTo(0.5);
     const int n = static_cast<int>(b->bodies().size());
@@ -640,7 +649,7 @@ TEST(bodiesInRun, insertingAnIdleBodyLeavesTheOthersExact)
 
 TEST(bodiesInRun, removingATouchingBodyKeepsTheOtherHistories)
 {
-    auto w = clusterWithFarFloe(false);
+    auto w = collidingCluster(FarFloe::none);
     w->advanceTo(0.3);
     while (w->contactPairCount() < 3) w->step();
     const std::vector<ContactRecord> before = w->contactRecords();
@@ -679,7 +688,7 @@ TEST(bodiesInRun, removingATouchingBodyKeepsTheOtherHistories)
 
 TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
 {
-    auto w = clusterWithFarFloe(false);
+    auto w = collidingCluster(FarFloe::none);
     w->advanceTo(0.1);
     const Vec3 x = w->bodies()[5].x;
     w->insertBodyInRun(0, 0, x + Vec3(0, 0, 2.0));     // above it: free
@@ -697,50 +706,6 @@ TEST(bodiesInRun, aBodyInsertedOnAnotherIsAnError)
 }
 
 
-namespace
-{
-
-//- The colliding cluster with one of its floes (id 4) fixed: a structure
-//  the others hit; optionally an idle floe far away first (index 0, id
-//  1000), whose removal moves every other index down by one
-std::unique_ptr<World> clusterWithStructure(bool farFirst)
-{
-    auto w = makePeriodicField(100, 9);
-    auto v = std::make_unique<World>(noGravity());
-    const int mat = v->addMaterial(ice(1e9));
-    v->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
-    for (const DilatedShape& s : w->shapes()) v->addShape(s);
-    if (farFirst)
-    {
-        v->addBody
-        (
-            0, mat, Vec3(500, 500, 0), Quat::Identity(), Vec3(0.1, 0, 0),
-            Vec3::Zero(), BodyMotion::free, 1000
-        );
-    }
-    int k = 0;
-    for (const Body& b : w->bodies())
-    {
-        const bool structure = k == 4;
-        const int i = v->addBody
-        (
-            b.shape, mat, Vec3::Zero(), Quat::Identity(), Vec3::Zero(),
-            Vec3::Zero(), structure ? BodyMotion::fixed : BodyMotion::free, k
-        );
-        Body& t = v->bodies()[i];
-        t.x = b.x;
-        t.q = b.q;
-        if (!structure)
-        {
-            t.v = b.v;
-            t.L = b.L;
-        }
-        ++k;
-    }
-    return v;
-}
-
-} // anonymous namespace
 
 
 TEST(bodiesInRun, aStructureIsFoundByIdAndKeepsItsLoadWhenBodiesBelowItGo)
@@ -751,8 +716,8 @@ TEST(bodiesInRun, aStructureIsFoundByIdAndKeepsItsLoadWhenBodiesBelowItGo)
     // without the removed floe, also in the step of the removal, where
     // the neighbour list's pair forces are rebuilt
     const int id = 4;
-    auto a = clusterWithStructure(false);
-    auto b = clusterWithStructure(true);
+    auto a = collidingCluster(FarFloe::none, id);
+    auto b = collidingCluster(FarFloe::first, id);
     ASSERT_EQ(a->indexOfId(id), 4);
     ASSERT_EQ(b->indexOfId(id), 5);
     int steps = 0;
@@ -789,7 +754,7 @@ TEST(bodiesInRun, coresBroughtTogetherInARunDoNotStopARemoval)
     // A hard contact may push two cores into each other during a run; the
     // rebuild after a removal continues the run (as the uninterrupted run
     // does) instead of refusing the pair as an overlap at the start
-    auto w = clusterWithFarFloe(true);
+    auto w = collidingCluster(FarFloe::last);
     w->advanceTo(0.1);
     w->bodies()[1].x = w->bodies()[0].x + Vec3(0.05, 0, 0);
     std::vector<bool> remove(w->bodies().size(), false);

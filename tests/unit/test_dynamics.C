@@ -281,25 +281,6 @@ TEST(rotation, torqueFreeAsymmetricBodyFollowsEulersEquations)
 }
 
 
-namespace
-{
-
-void expectSameState(const World& a, const World& b)
-{
-    ASSERT_EQ(a.bodies().size(), b.bodies().size());
-    for (std::size_t i = 0; i < a.bodies().size(); ++i)
-    {
-        const Body& p = a.bodies()[i];
-        const Body& q = b.bodies()[i];
-        EXPECT_EQ(p.x, q.x) << "body " << i;
-        EXPECT_EQ(p.v, q.v) << "body " << i;
-        EXPECT_EQ(p.L, q.L) << "body " << i;
-        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
-    }
-}
-
-} // anonymous namespace
-
 
 TEST(invariants, resultsDoNotDependOnTheNumberOfThreads)
 {

@@ -52,6 +52,7 @@ namespace
 {
 
 using namespace test::hydro;
+using test::expectSameState;
 
 //- World of prism floes (true size: the outer polyhedron is the prism of
 //  the given polygon, bottom zb, height h)
@@ -531,20 +532,6 @@ std::unique_ptr<World> windField(int n, unsigned seed)
         std::make_shared<FloeDamping>(water, FloeDampingSettings())
     );
     return w;
-}
-
-void expectSameState(const World& a, const World& b)
-{
-    ASSERT_EQ(a.bodies().size(), b.bodies().size());
-    for (std::size_t i = 0; i < a.bodies().size(); ++i)
-    {
-        const Body& p = a.bodies()[i];
-        const Body& q = b.bodies()[i];
-        EXPECT_EQ(p.x, q.x) << "body " << i;
-        EXPECT_EQ(p.v, q.v) << "body " << i;
-        EXPECT_EQ(p.L, q.L) << "body " << i;
-        EXPECT_EQ(p.q.coeffs(), q.q.coeffs()) << "body " << i;
-    }
 }
 
 } // anonymous namespace
