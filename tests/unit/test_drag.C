@@ -25,6 +25,7 @@ Description
 #include "hydro/Drag.H"
 #include "hydro/FlowVelocity.H"
 #include "hydroFixtures.H"
+#include "testWorlds.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -42,6 +43,35 @@ namespace
 {
 
 using namespace test::hydro;
+
+//- A random convex polygon in any plane, as the skin-integral tests draw
+//  it: m vertices on an ellipse of semi-axes a, b in [1, 5] (in-plane axes
+//  t1, t2 of the normal n) about a random origin, at jittered angles
+struct PlanePolygon
+{
+    Vec3 n, t1, t2, origin;
+    double a, b;
+    std::vector<Vec3> q;
+};
+
+PlanePolygon randomEllipsePolygon(std::mt19937& gen, int m)
+{
+    std::uniform_real_distribution<double> U(-1, 1);
+    PlanePolygon P;
+    P.n = Vec3(U(gen), U(gen), U(gen)).normalized();
+    P.t1 = P.n.unitOrthogonal();
+    P.t2 = P.n.cross(P.t1);
+    P.a = 1 + 4*std::abs(U(gen));
+    P.b = 1 + 4*std::abs(U(gen));
+    P.origin = Vec3(5*U(gen), 5*U(gen), 5*U(gen));
+    const double phase = M_PI*U(gen);
+    for (int k = 0; k < m; ++k)
+    {
+        const double th = phase + 2*M_PI*(k + 0.3*std::abs(U(gen)))/m;
+        P.q.push_back(P.origin + P.a*std::cos(th)*P.t1 + P.b*std::sin(th)*P.t2);
+    }
+    return P;
+}
 
 //- World with square-ish box floes Lx x Ly x h (true size) with their
 //  bottom at zb (test::hydro::BoxWorld: soft ice, no contacts happen)
@@ -450,13 +480,7 @@ TEST(Drag, independentOfThreadCount)
     const std::vector<Body> a = run(1);
     const std::vector<Body> b = run(2);
     omp_set_num_threads(saved);
-    for (std::size_t i = 0; i < a.size(); ++i)
-    {
-        EXPECT_EQ(a[i].x, b[i].x);
-        EXPECT_EQ(a[i].v, b[i].v);
-        EXPECT_EQ(a[i].L, b[i].L);
-        EXPECT_EQ(a[i].q.coeffs(), b[i].q.coeffs());
-    }
+    test::expectSameBodies(a, b);
 }
 
 
@@ -579,22 +603,15 @@ TEST(Drag, skinClosedFormAgreesWithFineQuadrature)
     double worst = 0, worstRule = 0, worstFar = 0;
     for (int trial = 0; trial < 60; ++trial)
     {
-        const Vec3 n = Vec3(U(gen), U(gen), U(gen)).normalized();
-        const Vec3 t1 = n.unitOrthogonal();
-        const Vec3 t2 = n.cross(t1);
         const int m = 3 + trial % 6;
-        const double a = 1 + 4*std::abs(U(gen)), b = 1 + 4*std::abs(U(gen));
-        const Vec3 origin(5*U(gen), 5*U(gen), 5*U(gen));
-        const double phase = M_PI*U(gen);
-        std::vector<Vec3> q;
-        for (int k = 0; k < m; ++k)
-        {
-            const double th = phase + 2*M_PI*(k + 0.3*std::abs(U(gen)))/m;
-            q.push_back(origin + a*std::cos(th)*t1 + b*std::sin(th)*t2);
-        }
+        const PlanePolygon P = randomEllipsePolygon(gen, m);
+        const Vec3& n = P.n;
+        const Vec3& t1 = P.t1;
+        const Vec3& origin = P.origin;
+        const std::vector<Vec3>& q = P.q;
         const Vec3 w(0.5*U(gen), 0.5*U(gen), 0.5*U(gen));
         const Vec3 omega(0.3*U(gen), 0.3*U(gen), 0.3*U(gen));
-        const double size = std::max(a, b);
+        const double size = std::max(P.a, P.b);
         auto error = [&](const Vec3& I, const Vec3& Ir,
                          const Vec3& J, const Vec3& Jr)
         {
@@ -661,19 +678,12 @@ TEST(Drag, skinExpansionWithinItsBound)
     std::vector<double> worstRule(ratios.size(), 0);
     for (int trial = 0; trial < 200; ++trial)
     {
-        const Vec3 n = Vec3(U(gen), U(gen), U(gen)).normalized();
-        const Vec3 t1 = n.unitOrthogonal();
-        const Vec3 t2 = n.cross(t1);
         const int m = 3 + trial % 8;
-        const double a = 1 + 4*std::abs(U(gen)), b = 1 + 4*std::abs(U(gen));
-        const Vec3 origin(5*U(gen), 5*U(gen), 5*U(gen));
-        const double phase = M_PI*U(gen);
-        std::vector<Vec3> q;
-        for (int k = 0; k < m; ++k)
-        {
-            const double th = phase + 2*M_PI*(k + 0.3*std::abs(U(gen)))/m;
-            q.push_back(origin + a*std::cos(th)*t1 + b*std::sin(th)*t2);
-        }
+        const PlanePolygon P = randomEllipsePolygon(gen, m);
+        const Vec3& n = P.n;
+        const Vec3& t1 = P.t1;
+        const Vec3& t2 = P.t2;
+        const std::vector<Vec3>& q = P.q;
         Vec3 c = Vec3::Zero();
         double area = 0;
         for (int k = 1; k + 1 < m; ++k)

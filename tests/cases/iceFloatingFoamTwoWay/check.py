@@ -1,56 +1,19 @@
 #!/usr/bin/env python3
 # Checks of tests/cases/iceFloatingFoamTwoWay/Alltest (see there).
-import re
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from caseCheck import allPassed, check, internal, mag, twoWaySteps  # noqa: E402
+
 base = Path(sys.argv[1])
-ok = True
 RHO = 1025.0        # water.density of the tutorial
 DT = 0.1            # flow step of the tutorial
 
 
-def check(cond, msg):
-    global ok
-    print(("ok:   " if cond else "FAIL: ") + msg)
-    ok = ok and cond
-
-
-VEC = r'\(([^()]*)\)'
-
-
 def steps(log):
-    """Per time step of a solver log: (floe impulse, fluid impulse, imbalance, lost)."""
-    out = {}
-    t = None
-    for line in open(log):
-        m = re.match(r'^Time = (\S+)', line)
-        if m:
-            t = round(float(m.group(1)), 9)
-        if 'relative imbalance' in line:
-            v = re.findall(VEC, line)
-            imb = float(re.search(r'relative imbalance (\S+),', line).group(1))
-            out[t] = ([float(x) for x in v[0].split()],
-                      [float(x) for x in v[1].split()], imb,
-                      [float(x) for x in v[-1].split()])
-    return out
-
-
-def internal(path):
-    """The internalField of an ascii OpenFOAM field: list of floats or tuples."""
-    txt = open(path).read()
-    m = re.search(r'internalField\s+(uniform|nonuniform)', txt)
-    rest = txt[m.end():]
-    if m.group(1) == 'uniform':
-        return 'uniform', rest.split(';')[0].strip()
-    m2 = re.search(r'(\d+)\s*\(', rest)
-    n = int(m2.group(1))
-    body = rest[m2.end():]
-    if '(' in body.split('\n', 3)[1] or body.lstrip().startswith('('):
-        vals = [tuple(map(float, x.split())) for x in re.findall(VEC, body)[:n]]
-    else:
-        vals = [float(x) for x in body.split(')')[0].split()][:n]
-    return 'nonuniform', vals
+    """twoWaySteps of a solver log file."""
+    return twoWaySteps(open(log))
 
 
 def fluidImpulse(case, time, procs=None):
@@ -66,10 +29,6 @@ def fluidImpulse(case, time, procs=None):
             for k in range(3):
                 tot[k] += s[k]*RHO*v*DT
     return tot
-
-
-def mag(a):
-    return sum(x*x for x in a)**0.5
 
 
 def rows(p):
@@ -145,4 +104,4 @@ check(dX < 1e-6, f'parallel: floe position and velocity within 1e-6 of serial (m
 dJ = max(mag([a - b for a, b in zip(parallel[t][0], serial[t][0])])/mag(serial[t][0]) for t in parallel)
 check(dJ < 1e-4, f'parallel: floe drag impulse per step within 1e-4 of serial (max relative {dJ:.2e})')
 
-sys.exit(0 if ok else 1)
+sys.exit(0 if allPassed() else 1)

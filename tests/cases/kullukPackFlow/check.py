@@ -4,40 +4,14 @@ import re
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+from caseCheck import allPassed, check, internal, mag, twoWaySteps  # noqa: E402
+
 case = Path(sys.argv[1])
 restart = Path(sys.argv[2])
-ok = True
 RHO = 1025.0        # water.density of the tutorial
 UBAR = 0.3          # system/fvOptions
 TIMES = ['1', '1.5', '2', '2.5', '3', '3.5', '4']
-
-
-def check(cond, msg):
-    global ok
-    print(("ok:   " if cond else "FAIL: ") + msg)
-    ok = ok and cond
-
-
-VEC = r'\(([^()]*)\)'
-
-
-def internal(path):
-    """The internalField of an ascii OpenFOAM field: list of floats or tuples."""
-    txt = open(path).read()
-    m = re.search(r'internalField\s+(uniform|nonuniform)', txt)
-    rest = txt[m.end():]
-    if m.group(1) == 'uniform':
-        return 'uniform', rest.split(';')[0].strip()
-    m2 = re.search(r'(\d+)\s*\(', rest)
-    n = int(m2.group(1))
-    body = rest[m2.end():]
-    if body.lstrip().startswith('('):
-        return 'nonuniform', [tuple(map(float, x.split())) for x in re.findall(VEC, body)[:n]]
-    return 'nonuniform', [float(x) for x in body.split(')')[0].split()][:n]
-
-
-def mag(a):
-    return sum(x*x for x in a)**0.5
 
 
 log = open(case/'log.iceFloatingFoam').read().splitlines()
@@ -88,17 +62,7 @@ check(len(unc) >= 4*2 and worst < 1e-3*UBAR,
       f'{len(unc)} corrections, uncorrected mean within {worst/UBAR:.1e} of Ubar (limit 1e-3)')
 
 # 4. Two-way momentum balance
-steps = {}
-t = None
-for l in log:
-    mt = re.match(r'^Time = (\S+)', l)
-    if mt:
-        t = round(float(mt.group(1)), 9)
-    if 'relative imbalance' in l:
-        v = re.findall(VEC, l)
-        steps[t] = ([float(x) for x in v[0].split()], [float(x) for x in v[1].split()],
-                    float(re.search(r'relative imbalance (\S+),', l).group(1)),
-                    [float(x) for x in v[-1].split()])
+steps = twoWaySteps(log)
 worstImb = max(s[2] for s in steps.values()) if steps else 1
 lost = max(mag(s[3]) for s in steps.values()) if steps else 1
 smallest = min(mag(s[0]) for s in steps.values()) if steps else 0
@@ -131,4 +95,4 @@ for field in ('U', 'iceDragSource'):
     check(len(a) == len(b) and d <= 1e-12*m,
           f'restart from 1: {field} at t = 4 as uninterrupted (max difference {d:.2e}, largest {m:.3e})')
 
-sys.exit(0 if ok else 1)
+sys.exit(0 if allPassed() else 1)
