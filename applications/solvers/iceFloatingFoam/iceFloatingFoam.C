@@ -245,6 +245,11 @@ int main(int argc, char *argv[])
         {
             #include "moveStructure.H"
         }
+        if (dem && solveFlow)
+        {
+            // deltaT is now the flow step: the flow takes the two-way source
+            dem->beginFlowSolve();
+        }
 
         // --- Pressure-velocity PIMPLE corrector loop
         while (solveFlow && pimple.loop())

@@ -834,6 +834,15 @@ void Foam::iceDEMCoupling::beginStep()
 }
 
 
+void Foam::iceDEMCoupling::beginFlowSolve()
+{
+    if (reaction_)
+    {
+        reaction_->flowTakesSource();
+    }
+}
+
+
 void Foam::iceDEMCoupling::solve()
 {
     ::iceDEM::World& w = case_->world();

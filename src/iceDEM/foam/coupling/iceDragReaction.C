@@ -90,15 +90,19 @@ Foam::tmp<Foam::volVectorField> Foam::iceDragReaction::explicitSource
     const volVectorField& U
 ) const
 {
-    // Called by the flow solve only: the flow takes the source for this
-    // step (the impulse of interval_ over the flow step deltaT)
-    taken_ = true;
-    flowStep_ = mesh_.time().deltaTValue();
+    // The impulse of interval_ over the flow step deltaT
     return tmp<volVectorField>::New
     (
         "iceDragExplicitSource",
         sourceScale()*source_ + coeff_*U.oldTime()
     );
+}
+
+
+void Foam::iceDragReaction::flowTakesSource()
+{
+    taken_ = true;
+    flowStep_ = mesh_.time().deltaTValue();
 }
 
 
