@@ -351,16 +351,7 @@ TEST(periodic, restartEqualsUninterruptedRun)
     }
     EXPECT_GT(crossingContacts(*b), 0);
     auto c = makePeriodicField(100, 11);
-    for (std::size_t i = 0; i < b->bodies().size(); ++i)
-    {
-        Body& t = c->bodies()[i];
-        const Body& f = b->bodies()[i];
-        t.x = f.x; t.q = f.q; t.v = f.v; t.L = f.L;
-        t.force = f.force; t.torque = f.torque;
-    }
-    c->setContactRecords(b->contactRecords());
-    c->setTime(b->time());
-    c->initialise(true);
+    restartFrom(*c, *b);
     c->advanceTo(2.0);
     expectSameState(*a, *c);
 }

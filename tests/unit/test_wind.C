@@ -53,6 +53,7 @@ namespace
 
 using namespace test::hydro;
 using test::expectSameState;
+using test::restartFrom;
 
 //- World of prism floes (true size: the outer polyhedron is the prism of
 //  the given polygon, bottom zb, height h)
@@ -566,16 +567,7 @@ TEST(Wind, restartEqualsUninterruptedRun)
     auto b = windField(100, 11);
     b->advanceTo(cut);
     auto c = windField(100, 11);
-    for (std::size_t i = 0; i < b->bodies().size(); ++i)
-    {
-        Body& t = c->bodies()[i];
-        const Body& f = b->bodies()[i];
-        t.x = f.x; t.q = f.q; t.v = f.v; t.L = f.L;
-        t.force = f.force; t.torque = f.torque;
-    }
-    c->setContactRecords(b->contactRecords());
-    c->setTime(b->time());
-    c->initialise(true);
+    restartFrom(*c, *b);
     c->advanceTo(0.8);
     EXPECT_GT(b->contactCount(), 0);
     expectSameState(*a, *c);
