@@ -12,6 +12,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "field/IceFloe.H"
+#include "field/fieldDetail.H"
 
 #include <algorithm>
 #include <cmath>
@@ -24,11 +25,8 @@ namespace iceDEM
 namespace
 {
 
-//- z-component of the cross product of two planar vectors
-inline double cross2(const Vec2& a, const Vec2& b)
-{
-    return a.x()*b.y() - a.y()*b.x();
-}
+using fieldDetail::cross2;
+using fieldDetail::str;
 
 //- Diagonal of the bounding box
 double outlineSize(const std::vector<Vec2>& p)
@@ -45,14 +43,6 @@ double outlineSize(const std::vector<Vec2>& p)
         hi = hi.cwiseMax(q);
     }
     return (hi - lo).norm();
-}
-
-std::string str(double x)
-{
-    std::ostringstream os;
-    os.precision(10);
-    os << x;
-    return os.str();
 }
 
 //- A line n . x = c with outward unit normal n
