@@ -295,13 +295,8 @@ int findContacts
     }
 
     // Corners of a patch near each other share their weight (the merge
-    // partition, narrowPhaseMerge.H), each faded by its window factor over
-    // the bands' angle at the contact distance, parallelEdgeSin (r_A + r_B)
-    partitionMerges
-    (
-        out, col.n, SA.radius(), SB.radius(), s.mergeSharePower,
-        WindowFactors(A, B, s.parallelEdgeSin*rs)
-    );
+    // partition, narrowPhaseMerge.H)
+    partitionMerges(out, col.n, SA.radius(), SB.radius(), s.mergeSharePower);
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
