@@ -6,7 +6,6 @@
 #include "NarrowPhase.H"
 #include "pairSearch.H"
 #include "narrowPhaseMerge.H"
-#include "narrowPhaseFade.H"
 
 #include <algorithm>
 #include <limits>
@@ -293,13 +292,6 @@ int findContacts
                 search.vertexVertex(candA[ci], candB[cj]);
             }
         }
-    }
-
-    // Each contact faded towards its successor's weight near the
-    // boundaries of its window (narrowPhaseFade.H)
-    {
-        const SuccessorFades fades(A, B, search, s.parallelEdgeSin*rs, s.parallelEdgeSin);
-        for (int k = 0; k < col.n; ++k) fades.apply(out[k]);
     }
 
     // Corners of a patch near each other share their weight (the merge
