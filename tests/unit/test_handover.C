@@ -340,8 +340,12 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // through two windows (+3.1e-3 and -1.9e-3 as the crossing appears and
 // ends beside it, -2.1e-4 as the vertex-face contact ends with no
 // successor; the same with dt/2 and dt/4); in seed 39 a crossing of sine
-// 0.036 fades in 7 steps. Run it with --gtest_also_run_disabled_tests
-// (about 10 s of CPU)
+// 0.036 fades in 7 steps. The window factor proposed there, built in the
+// round after (commit 523f314 of branch handover, withdrawn), fixes seed 19
+// (2.3e-6) but breaks seeds 28 and 34 (8.3e-4, 5.8e-4); a fade towards
+// each boundary's successor (e590b92, withdrawn) breaks 13 pairs
+// (narrowPhaseMerge.H).
+// Run it with --gtest_also_run_disabled_tests (about 10 s of CPU)
 TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
     int impacts = 0;
