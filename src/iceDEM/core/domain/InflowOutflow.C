@@ -105,6 +105,7 @@ void InflowOutflow::update(World& world)
     {
         return;
     }
+    const bool first = lastUpdate_ < 0;
     lastUpdate_ = world.time();
     if (nextId_ < 0)
     {
@@ -159,6 +160,25 @@ void InflowOutflow::update(World& world)
             const int k = laneOf(bodies[i].x[lateral]);
             if (k >= 0) g[k] = std::min(g[k], upstreamPoint(world, int(i)));
         }
+    }
+
+    // At the start the initial field's floes within a strip width of each
+    // lane's upstream edge stand for the lane's last strip (bound: that
+    // edge), so the first strips follow their bulk too, not the slowest
+    if (first)
+    {
+        const std::vector<Body>& bodies = world.bodies();
+        for (std::size_t i = 0; i < bodies.size(); ++i)
+        {
+            if (!bodies[i].isFree()) continue;
+            const int k = laneOf(bodies[i].x[lateral]);
+            if (k < 0 || lastStrips_.count(bodies[i].id)) continue;
+            if (upstreamPoint(world, int(i)) < g[k] + settings_.stripWidth)
+            {
+                lastStrips_[bodies[i].id] = {k, along(bodies[i].x)};
+            }
+        }
+        for (int k = 0; k < n; ++k) laneBound_[k] = g[k];
     }
 
     for (int k = 0; k < n; ++k)
