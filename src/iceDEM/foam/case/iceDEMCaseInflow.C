@@ -13,12 +13,17 @@ Description
             upstream    0;          // [m] coordinate (x or y) of the inflow
             downstream  400;        // [m] floes past it are removed
             stripWidth  20;         // [m] width of an inserted strip
+            laneWidth   20;         // [m] width of a lane across the drift
+                                    // whose upstream edge is followed on
+                                    // its own [default: stripWidth]
             interval    1;          // [s] simulated time between updates
             material    ice;        // material of the new floes
             fieldDict   "system/createIceFieldDict";    // [default]
             window      (20 40);    // [m] (x or y) where the upstream
                                     // concentration is measured [default:
                                     // the strip after the insertion strip]
+            windowLateral (100 200); // [m] its bounds across the drift
+                                    // [default: the lateral bounds]
             // Generator entries, read from fieldDict unless given here:
             // concentration, meanFloeArea (or nFloes of fieldDict over its
             // region), thickness, radius, seed (default: fieldDict's + 1),
@@ -169,6 +174,7 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
             << " m between upstream and downstream)" << nl
             << exit(FatalIOError);
     }
+    s.laneWidth = positive(d, "laneWidth", s.stripWidth);
     s.interval = positive(d, "interval");
     s.material = materialOf(d);
     if (d.found("window", keyType::LITERAL))
@@ -182,6 +188,20 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
             FatalIOErrorInFunction(d)
                 << "Entry 'window' of 'domain': two finite, different"
                 << " coordinates along the drift; got " << w << nl
+                << exit(FatalIOError);
+        }
+    }
+
+    if (d.found("windowLateral", keyType::LITERAL))
+    {
+        const vector2D w = d.get<vector2D>("windowLateral");
+        s.windowLateralLo = min(w.x(), w.y());
+        s.windowLateralHi = max(w.x(), w.y());
+        if (!std::isfinite(w.x()) || !std::isfinite(w.y()) || !(w.x() != w.y()))
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'windowLateral' of 'domain': two finite, different"
+                << " coordinates across the drift; got " << w << nl
                 << exit(FatalIOError);
         }
     }
@@ -322,16 +342,24 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
         f.xmin = latLo;
         f.xmax = latHi;
     }
-    // A strip's region, for the generator's own checks
-    f.xmin = s.axis == 0 ? s.upstream : f.xmin;
-    f.xmax = s.axis == 0 ? s.upstream + s.stripWidth : f.xmax;
-    f.ymin = s.axis == 1 ? s.upstream : f.ymin;
-    f.ymax = s.axis == 1 ? s.upstream + s.stripWidth : f.ymax;
-    coreCall
-    (
-        d, "domain (inflow generator from " + fdName + " and domain)",
-        [&]{ ::iceDEM::checkVoronoiFieldSettings(f); }
-    );
+    // A lane's strip, for the generator's own checks (the settings keep
+    // the whole lateral extent)
+    {
+        const label nLanes =
+            max(label(1), label(std::lround((latHi - latLo)/s.laneWidth)));
+        ::iceDEM::VoronoiFieldSettings g = f;
+        const scalar laneHi = latLo + (latHi - latLo)/nLanes;
+        g.xmin = s.axis == 0 ? s.upstream : latLo;
+        g.xmax = s.axis == 0 ? s.upstream + s.stripWidth : laneHi;
+        g.ymin = s.axis == 1 ? s.upstream : latLo;
+        g.ymax = s.axis == 1 ? s.upstream + s.stripWidth : laneHi;
+        coreCall
+        (
+            d, "domain (inflow generator from " + fdName + " and domain,"
+            " on a lane's strip)",
+            [&]{ ::iceDEM::checkVoronoiFieldSettings(g); }
+        );
+    }
 
     // Across the drift: open, or periodic over the lateral bounds (the
     // same Domain as type periodic, in the lateral direction only)
@@ -359,7 +387,8 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
 
     Info<< "iceDEM: inflow/outflow along " << dir << ": upstream " << up
         << ", downstream " << down << " m, strips of " << s.stripWidth
-        << " m every " << s.interval << " s, concentration "
+        << " m in " << inflow_->lanes() << " lanes of "
+        << inflow_->settings().laneWidth << " m every " << s.interval << " s, concentration "
         << f.concentration << ", mean floe area " << f.meanFloeArea
         << " m2, seed " << label(f.seed) << " (generator from " << fdName
         << "), sides " << (periodicSides ? "periodic (" : "open (") << latLo
@@ -389,8 +418,9 @@ void Foam::iceDEMCase::startInflowOutflow()
         os.precision(12);
         os  << "# inflow/outflow: floes in (inserted upstream), out (removed"
             << " downstream), free floes in the domain, plan-area"
-            << " concentration in the window" << nl
-            << "# time in out floes upstreamConcentration" << nl;
+            << " concentration in the window, new floes dropped (their room"
+            << " was taken)" << nl
+            << "# time in out floes upstreamConcentration dropped" << nl;
     }
     writeInflowOutflow();
 }
@@ -415,8 +445,8 @@ void Foam::iceDEMCase::writeInflowOutflow()
     {
         Info<< "iceDEM inflowOutflow: " << nIn - inflowLoggedIn_ << " in, "
             << nOut - inflowLoggedOut_ << " out (total " << nIn << " in, "
-            << nOut << " out), " << floes << " floes, upstream concentration "
-            << c << nl;
+            << nOut << " out, " << inflow_->floesDropped() << " dropped), "
+            << floes << " floes, upstream concentration " << c << nl;
         inflowLoggedIn_ = nIn;
         inflowLoggedOut_ = nOut;
     }
@@ -424,7 +454,7 @@ void Foam::iceDEMCase::writeInflowOutflow()
     {
         inflowFile_()
             << w.time() << ' ' << nIn << ' ' << nOut << ' ' << floes << ' '
-            << c << endl;
+            << c << ' ' << inflow_->floesDropped() << endl;
     }
 }
 

@@ -233,8 +233,29 @@ void Foam::iceDEMState::applyInflowOutflow(::iceDEM::World& world) const
     s.strips = integerOf(d, "strips", d.get<scalar>("strips"), 0, 1LL << 52);
     s.nextId = integerOf(d, "nextId", d.get<scalar>("nextId"), -1, 1LL << 31);
     s.lastUpdate = d.get<scalar>("lastUpdate");
-    // States written before the strips kept their gap: 0 (as they ran)
-    s.gap = d.getOrDefault<scalar>("stripGap", 0);
+    s.floesDropped = integerOf
+    (
+        d, "floesDropped", d.getOrDefault<scalar>("floesDropped", 0), 0, 1LL << 52
+    );
+    // The lanes' last strips; a state written before the lanes has none
+    // (every lane then starts against its floes)
+    {
+        const scalarList bounds(d.getOrDefault<scalarList>("laneBounds", scalarList()));
+        const labelList ids(d.getOrDefault<labelList>("stripIds", labelList()));
+        const labelList lanes(d.getOrDefault<labelList>("stripLanes", labelList()));
+        const scalarList along(d.getOrDefault<scalarList>("stripAlong", scalarList()));
+        if (lanes.size() != ids.size() || along.size() != ids.size())
+        {
+            FatalIOErrorInFunction(d)
+                << "Entries 'stripIds' (" << ids.size() << "), 'stripLanes' ("
+                << lanes.size() << ") and 'stripAlong' (" << along.size()
+                << ") must have the same length" << nl << exit(FatalIOError);
+        }
+        s.laneBounds.assign(bounds.begin(), bounds.end());
+        s.stripIds.assign(ids.begin(), ids.end());
+        s.stripLanes.assign(lanes.begin(), lanes.end());
+        s.stripAlong.assign(along.begin(), along.end());
+    }
 
     // The inserted floes: (id zBottom thickness radius x0 y0 x1 y1 ...)
     const List<scalarList> rows(d.get<List<scalarList>>("floes"));
@@ -317,7 +338,23 @@ void Foam::iceDEMState::writeInflowOutflow(Ostream& os) const
     os.writeEntry("strips", scalar(s.strips));
     os.writeEntry("nextId", scalar(s.nextId));
     os.writeEntry("lastUpdate", s.lastUpdate);
-    os.writeEntry("stripGap", s.gap);
+    os.writeEntry("floesDropped", scalar(s.floesDropped));
+    {
+        scalarList bounds(label(s.laneBounds.size()));
+        forAll(bounds, k) bounds[k] = s.laneBounds[k];
+        labelList ids(label(s.stripIds.size())), lanes(ids.size());
+        scalarList along(ids.size());
+        forAll(ids, k)
+        {
+            ids[k] = s.stripIds[k];
+            lanes[k] = s.stripLanes[k];
+            along[k] = s.stripAlong[k];
+        }
+        os.writeEntry("laneBounds", bounds);
+        os.writeEntry("stripIds", ids);
+        os.writeEntry("stripLanes", lanes);
+        os.writeEntry("stripAlong", along);
+    }
 
     labelList ids(w.bodies().size());
     forAll(ids, i)
