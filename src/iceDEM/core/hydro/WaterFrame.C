@@ -32,9 +32,12 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
     Vec3 p[cap];
     double s[cap];
     int end = 0;
+    const auto faces = P.faces();
+    const int* faceVertices = P.faceVertices().data();
     for (int f = 0; f < nf; ++f)
     {
-        const int n = P.faces()[f].count;
+        const auto face = faces[f];
+        const int n = face.count;
         if (n + 1 > cap)
         {
             // Beyond the clip's buffers: the general paths
@@ -43,16 +46,57 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             frame.nDry = 0;
             return;
         }
+        const int* fv = faceVertices + face.begin;
+        if (!Dry)
+        {
+            // The wet side alone: the heights first, so that a face above
+            // the plane is not gathered and one below is copied once, to
+            // its wet polygon (the same polygons as below, bit for bit)
+            int nBelow = 0;
+            for (int k = 0; k < n; ++k)
+            {
+                nBelow += frame.h[fv[k]] < 0;
+            }
+            if (nBelow == 0)
+            {
+                continue;
+            }
+            Vec3* q = frame.wetVertex + end;
+            double* hq = frame.wetHeight + end;
+            int m = n;
+            if (nBelow == n)
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    q[k] = frame.r[fv[k]];
+                    hq[k] = frame.h[fv[k]];
+                }
+            }
+            else
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    p[k] = frame.r[fv[k]];
+                    s[k] = frame.h[fv[k]];
+                }
+                m = clipNegative(p, s, n, q, hq);
+                if (m == 0) continue;
+            }
+            end += m;
+            frame.wetFace[frame.nWet] = f;
+            frame.wetBegin[++frame.nWet] = end;
+            continue;
+        }
         int nBelow = 0, nAbove = 0;
         for (int k = 0; k < n; ++k)
         {
-            const int v = P.faceVertex(f, k);
+            const int v = fv[k];
             p[k] = frame.r[v];
             s[k] = frame.h[v];
             nBelow += s[k] < 0;
-            if (Dry) nAbove += s[k] > 0;
+            nAbove += s[k] > 0;
         }
-        if (Dry && nAbove > 0)
+        if (nAbove > 0)
         {
             // The dry polygon, as frameDry makes it
             Vec3* qd = frame.dryVertex + endDry;
