@@ -14,6 +14,49 @@ namespace iceDEM
 namespace
 {
 
+//- clipNegative (WaterClip.C) of the polygon r[fv[0..n)] with heights
+//  h[fv[k]], reading the frame's vertices in place instead of a gathered
+//  copy: the same branches and arithmetic, so the same polygon bit for bit
+inline int clipFace
+(
+    const Vec3* r,
+    const double* h,
+    const int* fv,
+    int n,
+    Vec3* out,
+    double* sOut
+)
+{
+    int m = 0;
+    int prev = fv[n - 1];
+    for (int k = 0; k < n; ++k)
+    {
+        const int v = fv[k];
+        if (h[v] < 0)
+        {
+            if (h[prev] >= 0)
+            {
+                const double t = h[v]/(h[v] - h[prev]);
+                out[m] = r[v] + t*(r[prev] - r[v]);
+                sOut[m] = 0;
+                ++m;
+            }
+            out[m] = r[v];
+            sOut[m] = h[v];
+            ++m;
+        }
+        else if (h[prev] < 0)
+        {
+            const double t = h[prev]/(h[prev] - h[v]);
+            out[m] = r[prev] + t*(r[v] - r[prev]);
+            sOut[m] = 0;
+            ++m;
+        }
+        prev = v;
+    }
+    return m < 3 ? 0 : m;
+}
+
 //- The wet polygons of every face into frame (and with Dry the dry ones,
 //  as frameDry makes them, from the same split of each cut face); a face
 //  beyond the clip's buffers leaves the frame unframed
@@ -50,8 +93,9 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
         if (!Dry)
         {
             // The wet side alone: the heights first, so that a face above
-            // the plane is not gathered and one below is copied once, to
-            // its wet polygon (the same polygons as below, bit for bit)
+            // the plane is not gathered, one below is copied once, to its
+            // wet polygon, and a cut one is clipped in place (the same
+            // polygons as below, bit for bit)
             int nBelow = 0;
             for (int k = 0; k < n; ++k)
             {
@@ -74,12 +118,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             }
             else
             {
-                for (int k = 0; k < n; ++k)
-                {
-                    p[k] = frame.r[fv[k]];
-                    s[k] = frame.h[fv[k]];
-                }
-                m = clipNegative(p, s, n, q, hq);
+                m = clipFace(frame.r, frame.h, fv, n, q, hq);
                 if (m == 0) continue;
             }
             end += m;
