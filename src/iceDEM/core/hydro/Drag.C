@@ -583,8 +583,6 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     // it has grown to the largest floe)
     static thread_local PolyhedronBuffer outerBuffer;
     const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
-    const Mat3 R = b.rotation();
-    const Vec3 omega = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
 
     Vec3 current;
     if
@@ -593,14 +591,21 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
      && flow_->uniform(current)
     )
     {
-        // The floe's frame, shared with buoyancy and floe damping
+        // The floe's frame, shared with buoyancy and floe damping (its R
+        // is b.rotation() at this pose, bit for bit)
         const WaterFrame& frame = waterFrame(world, i, water_.level);
         if (frame.valid())
         {
+            if (!frame.wet()) return;
+            const Mat3& R = frame.R;
+            const Vec3 omega =
+                R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
             frameDrag(P, frame, b, omega, current, F, M);
             return;
         }
     }
+    const Mat3 R = b.rotation();
+    const Vec3 omega = R*(b.invInertia.cwiseProduct(R.transpose()*b.L));
 
     // Two-way coupling: the drag per face for the flow (this thread's
     // buffers grow to the largest floe once, then allocate nothing)

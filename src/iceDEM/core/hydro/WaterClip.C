@@ -316,25 +316,26 @@ int truncatedPrismBottom
 {
     // The cap candidate: the face whose normal is nearest the vertical
     // (the bottom or the top of a floating floe, whatever its outline)
-    const int nf = static_cast<int>(P.faces().size());
+    const auto faces = P.faces();
+    const int nf = static_cast<int>(faces.size());
     const Vec3 up = R.row(2).transpose();
     int cap0 = 0;
     double best = -1;
     for (int f = 0; f < nf; ++f)
     {
-        const double c = std::abs(up.dot(P.faces()[f].normal));
+        const double c = std::abs(up.dot(faces[f].normal));
         if (c > best)
         {
             best = c;
             cap0 = f;
         }
     }
-    const Vec3& axis = P.faces()[cap0].normal;
+    const Vec3& axis = faces[cap0].normal;
     int cap1 = -1;
     for (int f = 0; f < nf; ++f)
     {
         if (f == cap0) continue;
-        const double d = P.faces()[f].normal.dot(axis);
+        const double d = faces[f].normal.dot(axis);
         if (d < -1 + prismTolerance && cap1 < 0)
         {
             cap1 = f;
@@ -352,13 +353,16 @@ int truncatedPrismBottom
     const double nz = up.dot(axis);
     const int bottom = nz < 0 ? cap0 : cap1;
     const int top = nz < 0 ? cap1 : cap0;
-    for (int k = 0; k < P.faces()[bottom].count; ++k)
+    const int* faceVertices = P.faceVertices().data();
+    const int* fb = faceVertices + faces[bottom].begin;
+    for (int k = 0; k < faces[bottom].count; ++k)
     {
-        if (!(h[P.faceVertex(bottom, k)] < 0)) return -1;
+        if (!(h[fb[k]] < 0)) return -1;
     }
-    for (int k = 0; k < P.faces()[top].count; ++k)
+    const int* ft = faceVertices + faces[top].begin;
+    for (int k = 0; k < faces[top].count; ++k)
     {
-        if (h[P.faceVertex(top, k)] < 0) return -1;
+        if (h[ft[k]] < 0) return -1;
     }
     return bottom;
 }
@@ -477,14 +481,15 @@ SubmergedVolume truncatedPrismVolume
     const Vec3 nb = R*P.faces()[bottom].normal;
     const double az = -nb.z();
     const int n = P.faces()[bottom].count;
-    const Vec3& a = r[P.faceVertex(bottom, 0)];
-    const double ha = h[P.faceVertex(bottom, 0)];
+    const int* fv = P.faceVertices().data() + P.faces()[bottom].begin;
+    const Vec3& a = r[fv[0]];
+    const double ha = h[fv[0]];
     double I0 = 0, I2 = 0;
     Vec3 I1 = Vec3::Zero();
     for (int k = 1; k + 1 < n; ++k)
     {
-        const int vb = P.faceVertex(bottom, k);
-        const int vc = P.faceVertex(bottom, k + 1);
+        const int vb = fv[k];
+        const int vc = fv[k + 1];
         const Vec3& b = r[vb];
         const Vec3& c = r[vc];
         const double hb = h[vb], hc = h[vc];

@@ -14,6 +14,49 @@ namespace iceDEM
 namespace
 {
 
+//- clipNegative (WaterClip.C) of the polygon r[fv[0..n)] with heights
+//  h[fv[k]], reading the frame's vertices in place instead of a gathered
+//  copy: the same branches and arithmetic, so the same polygon bit for bit
+inline int clipFace
+(
+    const Vec3* r,
+    const double* h,
+    const int* fv,
+    int n,
+    Vec3* out,
+    double* sOut
+)
+{
+    int m = 0;
+    int prev = fv[n - 1];
+    for (int k = 0; k < n; ++k)
+    {
+        const int v = fv[k];
+        if (h[v] < 0)
+        {
+            if (h[prev] >= 0)
+            {
+                const double t = h[v]/(h[v] - h[prev]);
+                out[m] = r[v] + t*(r[prev] - r[v]);
+                sOut[m] = 0;
+                ++m;
+            }
+            out[m] = r[v];
+            sOut[m] = h[v];
+            ++m;
+        }
+        else if (h[prev] < 0)
+        {
+            const double t = h[prev]/(h[prev] - h[v]);
+            out[m] = r[prev] + t*(r[v] - r[prev]);
+            sOut[m] = 0;
+            ++m;
+        }
+        prev = v;
+    }
+    return m < 3 ? 0 : m;
+}
+
 //- The wet polygons of every face into frame (and with Dry the dry ones,
 //  as frameDry makes them, from the same split of each cut face); a face
 //  beyond the clip's buffers leaves the frame unframed
@@ -32,9 +75,12 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
     Vec3 p[cap];
     double s[cap];
     int end = 0;
+    const auto faces = P.faces();
+    const int* faceVertices = P.faceVertices().data();
     for (int f = 0; f < nf; ++f)
     {
-        const int n = P.faces()[f].count;
+        const auto face = faces[f];
+        const int n = face.count;
         if (n + 1 > cap)
         {
             // Beyond the clip's buffers: the general paths
@@ -43,16 +89,53 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             frame.nDry = 0;
             return;
         }
+        const int* fv = faceVertices + face.begin;
+        if (!Dry)
+        {
+            // The wet side alone: the heights first, so that a face above
+            // the plane is not gathered, one below is copied once, to its
+            // wet polygon, and a cut one is clipped in place (the same
+            // polygons as below, bit for bit)
+            int nBelow = 0;
+            for (int k = 0; k < n; ++k)
+            {
+                nBelow += frame.h[fv[k]] < 0;
+            }
+            if (nBelow == 0)
+            {
+                continue;
+            }
+            Vec3* q = frame.wetVertex + end;
+            double* hq = frame.wetHeight + end;
+            int m = n;
+            if (nBelow == n)
+            {
+                for (int k = 0; k < n; ++k)
+                {
+                    q[k] = frame.r[fv[k]];
+                    hq[k] = frame.h[fv[k]];
+                }
+            }
+            else
+            {
+                m = clipFace(frame.r, frame.h, fv, n, q, hq);
+                if (m == 0) continue;
+            }
+            end += m;
+            frame.wetFace[frame.nWet] = f;
+            frame.wetBegin[++frame.nWet] = end;
+            continue;
+        }
         int nBelow = 0, nAbove = 0;
         for (int k = 0; k < n; ++k)
         {
-            const int v = P.faceVertex(f, k);
+            const int v = fv[k];
             p[k] = frame.r[v];
             s[k] = frame.h[v];
             nBelow += s[k] < 0;
-            if (Dry) nAbove += s[k] > 0;
+            nAbove += s[k] > 0;
         }
-        if (Dry && nAbove > 0)
+        if (nAbove > 0)
         {
             // The dry polygon, as frameDry makes it
             Vec3* qd = frame.dryVertex + endDry;
