@@ -208,33 +208,7 @@ int clipNegative
     double* sOut
 )
 {
-    int m = 0;
-    int prev = n - 1;
-    for (int k = 0; k < n; ++k)
-    {
-        if (s[k] < 0)
-        {
-            if (s[prev] >= 0)
-            {
-                const double t = s[k]/(s[k] - s[prev]);
-                out[m] = p[k] + t*(p[prev] - p[k]);
-                sOut[m] = 0;
-                ++m;
-            }
-            out[m] = p[k];
-            sOut[m] = s[k];
-            ++m;
-        }
-        else if (s[prev] < 0)
-        {
-            const double t = s[prev]/(s[prev] - s[k]);
-            out[m] = p[prev] + t*(p[k] - p[prev]);
-            sOut[m] = 0;
-            ++m;
-        }
-        prev = k;
-    }
-    return m < 3 ? 0 : m;
+    return clipNegativeAt(p, s, [](int k) { return k; }, n, out, sOut);
 }
 
 

@@ -14,49 +14,6 @@ namespace iceDEM
 namespace
 {
 
-//- clipNegative (WaterClip.C) of the polygon r[fv[0..n)] with heights
-//  h[fv[k]], reading the frame's vertices in place instead of a gathered
-//  copy: the same branches and arithmetic, so the same polygon bit for bit
-inline int clipFace
-(
-    const Vec3* r,
-    const double* h,
-    const int* fv,
-    int n,
-    Vec3* out,
-    double* sOut
-)
-{
-    int m = 0;
-    int prev = fv[n - 1];
-    for (int k = 0; k < n; ++k)
-    {
-        const int v = fv[k];
-        if (h[v] < 0)
-        {
-            if (h[prev] >= 0)
-            {
-                const double t = h[v]/(h[v] - h[prev]);
-                out[m] = r[v] + t*(r[prev] - r[v]);
-                sOut[m] = 0;
-                ++m;
-            }
-            out[m] = r[v];
-            sOut[m] = h[v];
-            ++m;
-        }
-        else if (h[prev] < 0)
-        {
-            const double t = h[prev]/(h[prev] - h[v]);
-            out[m] = r[prev] + t*(r[v] - r[prev]);
-            sOut[m] = 0;
-            ++m;
-        }
-        prev = v;
-    }
-    return m < 3 ? 0 : m;
-}
-
 //- The wet polygons of every face into frame (and with Dry the dry ones,
 //  as frameDry makes them, from the same split of each cut face); a face
 //  beyond the clip's buffers leaves the frame unframed
@@ -77,6 +34,20 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
     int end = 0;
     const auto faces = P.faces();
     const int* faceVertices = P.faceVertices().data();
+    // Face f's wet (dry) polygon, written at the end of the frame's list,
+    // joins the list
+    const auto addWet = [&](int f, int m)
+    {
+        end += m;
+        frame.wetFace[frame.nWet] = f;
+        frame.wetBegin[++frame.nWet] = end;
+    };
+    const auto addDry = [&](int f, int md)
+    {
+        endDry += md;
+        frame.dryFace[frame.nDry] = f;
+        frame.dryBegin[++frame.nDry] = endDry;
+    };
     for (int f = 0; f < nf; ++f)
     {
         const auto face = faces[f];
@@ -118,12 +89,13 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             }
             else
             {
-                m = clipFace(frame.r, frame.h, fv, n, q, hq);
+                m = clipNegativeAt
+                (
+                    frame.r, frame.h, [fv](int k) { return fv[k]; }, n, q, hq
+                );
                 if (m == 0) continue;
             }
-            end += m;
-            frame.wetFace[frame.nWet] = f;
-            frame.wetBegin[++frame.nWet] = end;
+            addWet(f, m);
             continue;
         }
         int nBelow = 0, nAbove = 0;
@@ -154,18 +126,8 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 double* hq = frame.wetHeight + end;
                 int m;
                 splitPolygon(p, s, n, q, hq, m, qd, md);
-                if (md > 0)
-                {
-                    endDry += md;
-                    frame.dryFace[frame.nDry] = f;
-                    frame.dryBegin[++frame.nDry] = endDry;
-                }
-                if (m > 0)
-                {
-                    end += m;
-                    frame.wetFace[frame.nWet] = f;
-                    frame.wetBegin[++frame.nWet] = end;
-                }
+                if (md > 0) addDry(f, md);
+                if (m > 0) addWet(f, m);
                 continue;
             }
             else
@@ -176,12 +138,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 for (int k = 0; k < n; ++k) sNeg[k] = -s[k];
                 md = clipNegative(p, sNeg, n, qd, sOut);
             }
-            if (md > 0)
-            {
-                endDry += md;
-                frame.dryFace[frame.nDry] = f;
-                frame.dryBegin[++frame.nDry] = endDry;
-            }
+            if (md > 0) addDry(f, md);
         }
         if (nBelow == 0)
         {
@@ -204,9 +161,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             m = clipNegative(p, s, n, q, hq);
             if (m == 0) continue;
         }
-        end += m;
-        frame.wetFace[frame.nWet] = f;
-        frame.wetBegin[++frame.nWet] = end;
+        addWet(f, m);
     }
 }
 
