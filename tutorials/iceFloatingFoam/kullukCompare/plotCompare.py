@@ -3,7 +3,9 @@
 # iceDEM tutorial iceFloatingFoam/kullukCompare: tables and figures of the
 # comparison one-way / two-way / empirical (Allrun.compare runs it).
 #
-#   python3 plotCompare.py --out DIR --transient T VARIANT_DIR...
+#   python3 plotCompare.py --out DIR --transient T [--depth D] VARIANT_DIR...
+#
+# (also ../kullukPack/runCoupled's figures: the same outputs of the pack)
 #
 # Reads, per variant folder (oneWay, twoWay, empirical):
 #   postProcessing/iceLoadStatistics/*/series.dat   loads and tensions per step
@@ -20,7 +22,7 @@
 #                with their intervals; the load's running mean
 #   topView.png  the floes at the last common write time, coloured by speed
 #                (../kulluk/plotKulluk.py)
-#   flow.png     |U_h| of UMean under the ice (z = -1.55 m) and on the
+#   flow.png     |U_h| of UMean under the ice (z = -D, default 1.55 m) and on the
 #                section y = 0.1 m, one-way and two-way and their difference;
 #                the probes along the drift line with intervals
 # Statistics over the samples at times > T, the same window for every
@@ -145,6 +147,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--out", required=True)
     ap.add_argument("--transient", type=float, required=True)
+    ap.add_argument("--depth", type=float, default=1.55,
+                    help="depth [m] of the slice and probes under the ice (the runs' own)")
     ap.add_argument("variants", nargs="+")
     a = ap.parse_args()
     base = os.path.dirname(os.path.abspath(a.variants[0])) if os.path.isdir(a.variants[0]) else None
@@ -215,6 +219,8 @@ def main():
         w = t > a.transient
         probes[v] = (pts, t, U)
         for i, p in enumerate(pts):
+            if np.any(np.abs(U[:, i, :]) > 1e100):
+                continue    # outside the mesh ('Not Found': OpenFOAM writes vGreat)
             ux, uy = U[w, i, 0], U[w, i, 1]
             sp = np.hypot(ux, uy)
             row = [v, i, p[0], p[1], p[2], int(w.sum())]
@@ -298,7 +304,7 @@ def main():
         cx = X[keep][tri.triangles].mean(axis=1)
         cy = Y[keep][tri.triangles].mean(axis=1)
         if s == "underIce":
-            inside = np.hypot(cx, cy) < hullRadius(-1.55)
+            inside = np.hypot(cx, cy) < hullRadius(-a.depth)
         else:
             inside = (np.abs(cx) < hullRadius(cy)) & (cy > -11.0)
         tri.set_mask(inside)
@@ -341,19 +347,21 @@ def main():
                 axk.add_patch(plt.Circle((0, 0), 35, fill=False, color="w" if v != "diff" else "k"))
                 axk.set_aspect("equal")
                 axk.set_ylabel("y [m]")
-                axk.set_title("%s\nUMean at z = -1.55 m (0.5 m under the floes)" % title, fontsize=9)
+                axk.set_title("%s\nUMean at z = -%g m (0.5 m under the floes)" % (title, a.depth),
+                              fontsize=9)
             else:
                 axk.set_ylabel("z [m]")
                 axk.set_title("%s\nUMean on the section y = 0.1 m" % title, fontsize=9)
             axk.set_xlabel("x [m] (drift: +x)")
     axp = fig.add_subplot(gs[2, :2])
     for v in cases:
-        rows = [r for r in flowRows if r[0] == v and abs(r[3]) < 1e-9 and abs(r[4] + 1.55) < 1e-9]
+        rows = [r for r in flowRows if r[0] == v and abs(r[3]) < 1e-9 and abs(r[4] + a.depth) < 1e-9]
         rows.sort(key=lambda r: r[2])
         axp.errorbar([r[2] for r in rows], [r[10] for r in rows], yerr=[r[11] for r in rows],
                      marker="o", ms=3, capsize=3, color=COLOUR.get(v, "grey"), label=LABEL.get(v, v))
     axp.axvline(-35, color="k", lw=0.8, ls=":")
-    axp.set_xlabel("x [m] on the drift line y = 0, z = -1.55 m (hull waterline at x = -35 m)")
+    axp.set_xlabel("x [m] on the drift line y = 0, z = -%g m (hull waterline at x = -35 m)"
+                   % a.depth)
     axp.set_ylabel("mean |U_h| [m/s]")
     axp.set_title("the current in front of the hull, mean over t > %g s with 95 %% intervals"
                   % a.transient, fontsize=10)
