@@ -21,6 +21,11 @@
 #   below the water (pushed down the cone or under the hull), and of all
 #   floes within 60 m; the mean x velocity of all floes (packSpeedX: a
 #   jammed pack is at rest, a pack in free drift moves at about 0.4 m/s).
+#   From postProcessing/iceLoad/ (every output step after the transient):
+#   the mean vertical ice load on the hull Fz_mean with its batch-means
+#   half-width (upward, > 0: the cone pushes floes down; a fully submerged
+#   floe of area A and thickness h lifts with A h (rho_w - rho_i) g) and the
+#   mean number of floe-hull contacts.
 # Across seeds (one row per thickness and concentration): the mean of each
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
@@ -84,6 +89,20 @@ def readSeries(d):
             a = a[a[:, 0] <= parts[i + 1][0, 0] - 1e-9]
         out.append(a)
     return header, np.vstack(out)
+
+
+def readIceLoad(d):
+    """postProcessing/iceLoad/*/iceLoad.dat of every session (the ice load
+    on the structure per output step: time Fx Fy Fz Mx My Mz contacts), later
+    sessions replacing the rows they repeat, as readSeries."""
+    rows = {}
+    for f in sorted(glob.glob(os.path.join(d, "postProcessing/iceLoad/*/iceLoad.dat")),
+                    key=lambda f: float(f.split("/")[-2])):
+        for line in open(f):
+            if not line.startswith("#") and line.strip():
+                v = [float(x) for x in line.split()]
+                rows[v[0]] = v
+    return np.array([rows[t] for t in sorted(rows)]) if rows else None
 
 
 def batchHalfWidth(x, k=BATCHES):
@@ -197,6 +216,15 @@ def analyseRun(d, transient):
     r.setdefault("floes", floes)
     r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"], r["packSpeedX"] = \
         hullCounts(d, transient, floes, pieces)
+    # the vertical ice load on the hull (upward: the cone pushes floes down)
+    # and the floe-hull contacts, every output step after the transient
+    A = readIceLoad(d)
+    w = A[:, 0] > transient if A is not None else None
+    if A is not None and w.sum() >= 2*BATCHES:
+        r["Fz_mean"], r["Fz_hw"] = A[w, 3].mean(), batchHalfWidth(A[w, 3])
+        r["hullContacts_mean"] = A[w, 7].mean()
+    else:
+        r["Fz_mean"] = r["Fz_hw"] = r["hullContacts_mean"] = float("nan")
     return r
 
 
@@ -252,7 +280,7 @@ def main():
         groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
     agg = []
     qs = ["Fh_mean", "Fh_std", "Fh_max", "Fh_p99", "Tmax_mean", "Tmax_std", "Tmax_max",
-          "Tmax_p99", "ratio"]
+          "Tmax_p99", "ratio", "Fz_mean"]
     for (h, cc), rs in sorted(groups.items()):
         row = dict(thickness=h, concentration=cc, seeds=len(rs))
         for q in qs:
