@@ -68,7 +68,11 @@ struct ImpactRecord
 //- Diagnosis of a failing impact (issue 18 §1): one line for a step, the
 //  step's energy change (of E0) and every contact between the two bodies
 //  (feature pair, features, merged weight, overlap, point), as the World's
-//  narrow phase gives them
+//  narrow phase gives them, and each contact's support gap g = dist -
+//  gap(n): its core distance less the separation of the cores along its
+//  own normal (min over B of n . q - max over A of n . p), 0 for the
+//  closest pair of convex cores and positive for every other, whichever
+//  feature pair computes it (narrowPhaseMerge.H)
 std::string listPairContacts(const World& w, int sa, int sb, double stepChange)
 {
     const Body& a = w.bodies()[0];
@@ -88,11 +92,16 @@ std::string listPairContacts(const World& w, int sa, int sb, double stepChange)
     for (int k = 0; k < n; ++k)
     {
         const ContactGeometry& g = found[k].g;
+        double maxA = -std::numeric_limits<double>::max();
+        double minB = std::numeric_limits<double>::max();
+        for (const Vec3& p : va) maxA = std::max(maxA, g.normal.dot(p));
+        for (const Vec3& q : vb) minB = std::min(minB, g.normal.dot(q));
+        const double dist = w.shapes()[sa].radius() + w.shapes()[sb].radius() - g.overlap;
         std::snprintf
         (
-            buf, sizeof buf, " [%s %x/%x W %.4f d %.3e at %.4f %.4f %.4f]",
+            buf, sizeof buf, " [%s %x/%x W %.4f d %.3e g %.2e at %.4f %.4f %.4f]",
             featurePairName(g.type), found[k].featureA, found[k].featureB, g.weight,
-            g.overlap, g.point.x(), g.point.y(), g.point.z()
+            g.overlap, dist - (minB - maxA), g.point.x(), g.point.y(), g.point.z()
         );
         line += buf;
     }
@@ -406,7 +415,8 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // round after (commit 523f314 of branch handover, withdrawn), fixes seed 19
 // (2.3e-6) but breaks seeds 28 and 34 (8.3e-4, 5.8e-4); a fade towards
 // each boundary's successor (e590b92, withdrawn) breaks 13 pairs
-// (narrowPhaseMerge.H).
+// (narrowPhaseMerge.H). Its two failures are one time step's sample: at
+// three steps (the next test) 2, 6 and 2 pairs fail, up to 1.8e-2.
 // Run it with --gtest_also_run_disabled_tests (about 10 s of CPU)
 TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
