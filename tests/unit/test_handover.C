@@ -19,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace iceDEM;
@@ -61,17 +62,68 @@ struct ImpactRecord
     double deepest = 0;     //!< largest overlap/smaller radius (broad battery)
     double youngsModulus = 0;   //!< chosen (broad battery)
     double timeStep = 0;
+    int worstImpact = -1;   //!< index of the impact with the largest change
 };
+
+//- Diagnosis of a failing impact (issue 18 §1): one line for a step, the
+//  step's energy change (of E0) and every contact between the two bodies
+//  (feature pair, features, merged weight, overlap, point), as the World's
+//  narrow phase gives them, and each contact's support gap g = dist -
+//  gap(n): its core distance less the separation of the cores along its
+//  own normal (min over B of n . q - max over A of n . p), 0 for the
+//  closest pair of convex cores and positive for every other, whichever
+//  feature pair computes it (narrowPhaseMerge.H)
+std::string listPairContacts(const World& w, int sa, int sb, double stepChange)
+{
+    const Body& a = w.bodies()[0];
+    const Body& b = w.bodies()[1];
+    std::vector<Vec3> va, vb;
+    const Mat3 Ra = a.rotation(), Rb = b.rotation();
+    for (const Vec3& p : w.shapes()[sa].core().vertices()) va.push_back(Ra*p + a.x);
+    for (const Vec3& p : w.shapes()[sb].core().vertices()) vb.push_back(Rb*p + b.x);
+    const BodyView A{&w.shapes()[sa], va.data(), Ra, a.x, a.q};
+    const BodyView B{&w.shapes()[sb], vb.data(), Rb, b.x, b.q};
+    FoundContact found[narrowPhase::maxMergeContacts];
+    Vec3 axis = Vec3::Zero();
+    const int n = findContacts(A, B, NarrowPhaseSettings(), axis, found, narrowPhase::maxMergeContacts);
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "  t %.6f dE %+.2e:", w.time(), stepChange);
+    std::string line(buf);
+    for (int k = 0; k < n; ++k)
+    {
+        const ContactGeometry& g = found[k].g;
+        double maxA = -std::numeric_limits<double>::max();
+        double minB = std::numeric_limits<double>::max();
+        for (const Vec3& p : va) maxA = std::max(maxA, g.normal.dot(p));
+        for (const Vec3& q : vb) minB = std::min(minB, g.normal.dot(q));
+        const double dist = w.shapes()[sa].radius() + w.shapes()[sb].radius() - g.overlap;
+        std::snprintf
+        (
+            buf, sizeof buf, " [%s %x/%x W %.4f d %.3e g %.2e at %.4f %.4f %.4f]",
+            featurePairName(g.type), found[k].featureA, found[k].featureB, g.weight,
+            g.overlap, dist - (minB - maxA), g.point.x(), g.point.y(), g.point.z()
+        );
+        line += buf;
+    }
+    return line + "\n";
+}
 
 //- Two random hulls (7 and 10 vertices, r = 0.05), e = 1, mu = 0, gravity,
 //  in the closed box [-1.5, 1.5]^3 for 'duration' s with dt = 2e-5 s (about
 //  200 steps per contact): the energy change of every impact (from the
 //  step before a contact starts to the step after the last one ends)
-ImpactRecord randomPairInABox(unsigned seed, double duration, const std::string& model)
+ImpactRecord randomPairInABox
+(
+    unsigned seed,
+    double duration,
+    const std::string& model,
+    double timeStep = 2e-5,
+    int listImpact = -1
+)
 {
     std::mt19937_64 rng(seed);
     WorldSettings s;
-    s.timeStep = 2e-5;
+    s.timeStep = timeStep;
     s.contact.model = model;
     World w(s);
     const int m = w.addMaterial(ice(1e9));
@@ -110,16 +162,35 @@ ImpactRecord randomPairInABox(unsigned seed, double duration, const std::string&
     const double E0 = totalEnergy(w);
     double before = E0;
     bool inContact = false;
+    std::string previous;
     while (w.time() < duration)
     {
         const double E = totalEnergy(w);
         w.step();
         const bool c = w.contactCount() > 0;
         if (c && !inContact) before = E;
+        if (c && r.impacts == listImpact)
+        {
+            // The steps that change the energy by more than 1 % of the
+            // bound of an impact, each with the step before
+            const double change = (totalEnergy(w) - E)/E0;
+            const std::string line = listPairContacts(w, sa, sb, change);
+            if (std::abs(change) > 1e-6)
+            {
+                std::printf("%s%s", previous.c_str(), line.c_str());
+                previous.clear();
+            }
+            else
+            {
+                previous = line;
+            }
+        }
         if (!c && inContact)
         {
+            const double change = std::abs(totalEnergy(w) - before)/E0;
+            if (change > r.worst) r.worstImpact = r.impacts;
+            r.worst = std::max(r.worst, change);
             ++r.impacts;
-            r.worst = std::max(r.worst, std::abs(totalEnergy(w) - before)/E0);
         }
         inContact = c;
     }
@@ -344,7 +415,8 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // round after (commit 523f314 of branch handover, withdrawn), fixes seed 19
 // (2.3e-6) but breaks seeds 28 and 34 (8.3e-4, 5.8e-4); a fade towards
 // each boundary's successor (e590b92, withdrawn) breaks 13 pairs
-// (narrowPhaseMerge.H).
+// (narrowPhaseMerge.H). Its two failures are one time step's sample: at
+// three steps (the next test) 2, 6 and 2 pairs fail, up to 1.8e-2.
 // Run it with --gtest_also_run_disabled_tests (about 10 s of CPU)
 TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
@@ -366,6 +438,52 @@ TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
         EXPECT_LT(std::abs(r.drift), 5e-3) << "seed " << seed;
     }
     EXPECT_GE(impacts, 1500);
+}
+
+
+// The same battery at three time steps (2e-5, 1.5e-5 and 1e-5 s: every
+// pair follows three different trajectories, each impact resolved by 200
+// to 400 steps). The pairs that fail at one step size are a sample of the
+// configurations that jump: issue 18's round after e590b92 measured on main
+// (merge union) 2, 6 and 2 failing pairs (seeds 19 and 39; 19, 22, 27,
+// 36, 37 and 39; 5 and 19), up to 1.7e-2 of the energy in one impact, and
+// with the union replaced by a smooth largest weight 2, 3 and 1 (39 and
+// 40; 27, 28 and 39; 37, 1.2e-2): narrowPhaseMerge.H, "What it does not
+// cover". This, not the single step size above, is what §1 has to pass.
+// A failing pair's worst impact is listed step by step (listPairContacts).
+// Run it with --gtest_also_run_disabled_tests (about a minute of CPU)
+TEST(handover, DISABLED_sevenAndTenVertexHullsAtThreeTimeSteps)
+{
+    for (const double dt : {2e-5, 1.5e-5, 1e-5})
+    {
+        int impacts = 0;
+        for (unsigned seed = 1; seed <= 40; ++seed)
+        {
+            ImpactRecord r;
+            try
+            {
+                r = randomPairInABox(seed, 5.0, "hertzSimplified", dt);
+            }
+            catch (const Error&)
+            {
+                continue;   // a hull with a vertex on another's face
+            }
+            impacts += r.impacts;
+            std::printf
+            (
+                "dt %.2g seed %u: %d impacts, worst %.3g (impact %d), drift %.3g\n",
+                dt, seed, r.impacts, r.worst, r.worstImpact, r.drift
+            );
+            EXPECT_LT(r.worst, impactBound) << "dt " << dt << " seed " << seed;
+            EXPECT_LT(std::abs(r.drift), 5e-3) << "dt " << dt << " seed " << seed;
+            if (r.worst >= impactBound)
+            {
+                std::printf("  its worst impact, step by step:\n");
+                randomPairInABox(seed, 5.0, "hertzSimplified", dt, r.worstImpact);
+            }
+        }
+        EXPECT_GE(impacts, 1500) << "dt " << dt;
+    }
 }
 
 
