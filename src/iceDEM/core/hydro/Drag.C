@@ -152,68 +152,12 @@ bool skinIntegralConical
 namespace
 {
 
-//- A facet's polygon in its own plane: in-plane axes ex, ey (ex x ey =
-//  n), origin at the first vertex, and its area and centroid there. The
-//  closed form's edge sums are two-dimensional; summed in three dimensions
-//  (until issue 16's thirteenth round) every edge cost two cross products
-//  and a dozen more products for the same numbers
-struct PlanarPolygon
-{
-    static constexpr int capacity = SubmergedFace::maxVertices + 1;
-    Vec3 origin, ex, ey;
-    double x[capacity], y[capacity];
-    int m = 0;
-    double area = 0;
-    double cx = 0, cy = 0;
-
-    //- The centroid, relative to what q was relative to
-    Vec3 centroid() const { return origin + cx*ex + cy*ey; }
-};
-
-//- q[0..m) (normal n) into poly; false for fewer than 3 or more than
-//  PlanarPolygon::capacity vertices or no positive area
-bool planarPolygon(const Vec3* q, int m, const Vec3& n, PlanarPolygon& poly)
-{
-    if (m < 3 || m > PlanarPolygon::capacity) return false;
-    // An orthonormal basis of the plane from n alone, continuous except at
-    // n = -z (Duff et al., J. Comput. Graph. Tech. 6(1), 2017): no square
-    // root and no search over the vertices
-    const double sign = std::copysign(1.0, n.z());
-    const double ka = -1/(sign + n.z());
-    const double kb = n.x()*n.y()*ka;
-    poly.origin = q[0];
-    poly.ex = Vec3(1 + sign*n.x()*n.x()*ka, sign*kb, -sign*n.x());
-    poly.ey = Vec3(kb, sign + n.y()*n.y()*ka, -n.y());
-    poly.m = m;
-    poly.x[0] = 0;
-    poly.y[0] = 0;
-    for (int k = 1; k < m; ++k)
-    {
-        const Vec3 e = q[k] - q[0];
-        poly.x[k] = e.dot(poly.ex);
-        poly.y[k] = e.dot(poly.ey);
-    }
-    // Fan from vertex 0 (at the origin)
-    double A2 = 0, Sx = 0, Sy = 0;
-    for (int k = 1; k + 1 < m; ++k)
-    {
-        const double a =
-            poly.x[k]*poly.y[k + 1] - poly.x[k + 1]*poly.y[k];
-        A2 += a;
-        Sx += a*(poly.x[k] + poly.x[k + 1]);
-        Sy += a*(poly.y[k] + poly.y[k + 1]);
-    }
-    if (!(A2 > 0)) return false;
-    poly.area = 0.5*A2;
-    poly.cx = Sx/(3*A2);
-    poly.cy = Sy/(3*A2);
-    return true;
-}
-
-//- skinIntegralClosedForm of a planar polygon (planarPolygon)
+//- skinIntegralClosedForm about the polygon's centroid (given)
 bool skinClosedForm
 (
-    const PlanarPolygon& poly,
+    const Vec3* q,
+    int m,
+    const Vec3& centroid,
     const Vec3& n,
     const Vec3& w,
     const Vec3& omega,
@@ -235,36 +179,31 @@ bool skinClosedForm
     // nu the edge's outward normal, p = d.nu its distance from e0, and with
     // t along the edge, r = |d| = sqrt(t^2 + p^2):
     //   J = [t r^3/4 + 3 p^2 t r/8 + 3 p^4/8 asinh(t/|p|)] between its ends.
-    // In the plane's axes (ex, ey): nu = (tau_y, -tau_x), n x (a, b) =
-    // (-b, a), and e0 x (n x G) = (e0 . G) n
     const double Om = omega.dot(n);
     if (Om == 0) return false;
-    const Vec3 centroid = poly.centroid();
     const Vec3 U = tangential(w + omega.cross(centroid), n);
-    const double e0x = -U.dot(poly.ey)/Om;
-    const double e0y = U.dot(poly.ex)/Om;
-    const int m = poly.m;
+    const Vec3 e0 = n.cross(U)/Om;
 
-    double dx[PlanarPolygon::capacity], dy[PlanarPolygon::capacity];
-    double r[PlanarPolygon::capacity];
+    Vec3 d[SubmergedFace::maxVertices + 1];
+    double r[SubmergedFace::maxVertices + 1];
     for (int k = 0; k < m; ++k)
     {
-        dx[k] = poly.x[k] - poly.cx - e0x;
-        dy[k] = poly.y[k] - poly.cy - e0y;
-        r[k] = std::sqrt(dx[k]*dx[k] + dy[k]*dy[k]);
+        d[k] = q[k] - centroid - e0;
+        r[k] = d[k].norm();
     }
-    double Gx = 0, Gy = 0, H = 0;
+    Vec3 G = Vec3::Zero();
+    double H = 0;
     for (int k = 0; k < m; ++k)
     {
         const int k1 = k + 1 == m ? 0 : k + 1;
-        const double Ex = dx[k1] - dx[k], Ey = dy[k1] - dy[k];
-        const double L = std::sqrt(Ex*Ex + Ey*Ey);
+        const Vec3 E = d[k1] - d[k];
+        const double L = E.norm();
         if (!(L > 0)) continue;
-        const double tx = Ex/L, ty = Ey/L;
-        const double p = dx[k]*ty - dy[k]*tx;
+        const Vec3 tau = E/L;
+        const Vec3 nu = tau.cross(n);
+        const double p = d[k].dot(nu);
         const double p2 = p*p;
-        const double t1 = dx[k]*tx + dy[k]*ty;
-        const double t2 = dx[k1]*tx + dy[k1]*ty;
+        const double t1 = d[k].dot(tau), t2 = d[k1].dot(tau);
         const double r1 = r[k], r2 = r[k1];
         double J =
             0.25*(t2*r2*r2*r2 - t1*r1*r1*r1)
@@ -277,13 +216,12 @@ bool skinClosedForm
             const double f2 = t2 >= 0 ? t2 + r2 : p2/(r2 - t2);
             J += 0.375*p2*p2*std::log(f2/f1);
         }
-        Gx += (J/3.0)*ty;
-        Gy -= (J/3.0)*tx;
+        G += (J/3.0)*nu;
         H += (J/5.0)*p;
     }
     const double s = Om*std::abs(Om);
-    I = s*(Gx*poly.ey - Gy*poly.ex);
-    Ir = centroid.cross(I) + (s*(e0x*Gx + e0y*Gy + H))*n;
+    I = s*n.cross(G);
+    Ir = centroid.cross(I) + s*(e0.cross(n.cross(G)) + H*n);
     return true;
 }
 
@@ -421,11 +359,9 @@ bool skinIntegralClosedForm
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    PlanarPolygon poly;
-    if (!planarPolygon(q, m, n, poly)) return false;
-    return skinClosedForm(poly, n, w, omega, I, Ir);
+    Vec3 centroid;
+    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
+    return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
 }
 
 
@@ -444,24 +380,20 @@ bool skinIntegral
     // centre of rotation is D far from a polygon of size a; there the field
     // is nearly uniform and its expansion about the centroid's velocity
     // errs by at most about 5/8 (a/D)^4 (skinExpansion)
-    I.setZero();
-    Ir.setZero();
-    PlanarPolygon poly;
-    if (!planarPolygon(q, m, n, poly)) return false;
+    Vec3 centroid;
+    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
     double a2 = 0;
     for (int k = 0; k < m; ++k)
     {
-        const double ex = poly.x[k] - poly.cx, ey = poly.y[k] - poly.cy;
-        a2 = std::max(a2, ex*ex + ey*ey);
+        a2 = std::max(a2, (q[k] - centroid).squaredNorm());
     }
-    const Vec3 centroid = poly.centroid();
     const double Om = omega.dot(n);
     const Vec3 U = tangential(w + omega.cross(centroid), n);
     const double D2 = U.squaredNorm();
     const double k2 = skinUniformRatio*skinUniformRatio;
     if (Om*Om*a2*k2 > D2)
     {
-        return skinClosedForm(poly, n, w, omega, I, Ir);
+        return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
     }
     skinExpansion(q, m, centroid, n, w, omega, I, Ir);
     return true;

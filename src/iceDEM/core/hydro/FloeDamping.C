@@ -145,43 +145,21 @@ Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
     // axis a (up, world) to the plane: l = r - h/a_z a. The cap's order
     // (counter-clockwise from below) is the lid's as the wet faces close
     // it, so WaterplaneSums takes the polygon as it is.
-    // Only their horizontal coordinates count, and the polygon's
-    // integrals are sums over its edges (Green's theorem: with c = x_k
-    // y_k+1 - x_k+1 y_k, 2 A = sum c, 6 Sx = sum (x_k + x_k+1) c, 12 Qxx =
-    // sum (x_k^2 + x_k x_k+1 + x_k+1^2) c, alike in y; negated for the
-    // cap's order): one product per edge where the fan's triangles and
-    // their edge midpoints took a dozen (the same integrals to round-off)
     constexpr int cap = SubmergedFace::maxVertices;
     const Vec3 a = -(frame.R*P.faces()[bottom].normal);
     const double invAz = 1/a.z();
-    const double ax = a.x()*invAz, ay = a.y()*invAz;
     const int n = P.faces()[bottom].count;
-    const int* fv = P.faceVertices().data() + P.faces()[bottom].begin;
-    double lx[cap], ly[cap];
+    Vec3 l[cap];
     for (int k = 0; k < n; ++k)
     {
-        const int v = fv[k];
-        lx[k] = frame.r[v].x() - frame.h[v]*ax;
-        ly[k] = frame.r[v].y() - frame.h[v]*ay;
-    }
-    double A2 = 0, Sx6 = 0, Sy6 = 0, Qxx12 = 0, Qyy12 = 0;
-    for (int k = 0; k < n; ++k)
-    {
-        const int k1 = k + 1 == n ? 0 : k + 1;
-        const double x0 = lx[k], y0 = ly[k], x1 = lx[k1], y1 = ly[k1];
-        const double c = x0*y1 - x1*y0;
-        A2 += c;
-        Sx6 += (x0 + x1)*c;
-        Sy6 += (y0 + y1)*c;
-        Qxx12 += (x0*x0 + x0*x1 + x1*x1)*c;
-        Qyy12 += (y0*y0 + y0*y1 + y1*y1)*c;
+        const int v = P.faceVertex(bottom, k);
+        l[k] = frame.r[v] - (frame.h[v]*invAz)*a;
     }
     WaterplaneSums sums;
-    sums.A = -0.5*A2;
-    sums.Sx = -Sx6/6;
-    sums.Sy = -Sy6/6;
-    sums.Qxx = -Qxx12/12;
-    sums.Qyy = -Qyy12/12;
+    for (int k = 1; k + 1 < n; ++k)
+    {
+        sums.addTriangle(l[0], l[k], l[k + 1]);
+    }
     return sums.waterplane(frame.x, frame.level);
 }
 
@@ -232,14 +210,10 @@ Vec3 FloeDamping::coefficients(const World& world, int i) const
         const double k4 = rhoG*(wp.Iyy + VBG);
         const double k5 = rhoG*(wp.Ixx + VBG);
         // World inertia about G: R diag(I) R^T
-        // (its two diagonal entries about x and y only)
         const Vec3 I = b.invInertia.cwiseInverse();
-        const double Iwxx =
-            R(0, 0)*R(0, 0)*I.x() + R(0, 1)*R(0, 1)*I.y() + R(0, 2)*R(0, 2)*I.z();
-        const double Iwyy =
-            R(1, 0)*R(1, 0)*I.x() + R(1, 1)*R(1, 1)*I.y() + R(1, 2)*R(1, 2)*I.z();
-        if (k4 > 0) c.y() = 2*settings_.rollPitch*std::sqrt(Iwxx*k4);
-        if (k5 > 0) c.z() = 2*settings_.rollPitch*std::sqrt(Iwyy*k5);
+        const Mat3 Iw = R*I.asDiagonal()*R.transpose();
+        if (k4 > 0) c.y() = 2*settings_.rollPitch*std::sqrt(Iw(0, 0)*k4);
+        if (k5 > 0) c.z() = 2*settings_.rollPitch*std::sqrt(Iw(1, 1)*k5);
     }
     return c;
 }
