@@ -224,60 +224,7 @@ void splitPolygon
     int& nPos
 )
 {
-    // clipNegative with s (neg) and with -s (pos) interleaved: the same
-    // branches and the same arithmetic (-a/(-a + b) is a/(a - b) exactly)
-    int mn = 0, mp = 0;
-    int prev = n - 1;
-    for (int k = 0; k < n; ++k)
-    {
-        const double sk = s[k], sp = s[prev];
-        if (sk < 0)
-        {
-            if (sp >= 0)
-            {
-                const double t = sk/(sk - sp);
-                neg[mn] = p[k] + t*(p[prev] - p[k]);
-                sNeg[mn] = 0;
-                ++mn;
-            }
-            neg[mn] = p[k];
-            sNeg[mn] = sk;
-            ++mn;
-            // -s: k outside; prev inside when sp > 0
-            if (sp > 0)
-            {
-                const double t = sp/(sp - sk);
-                pos[mp++] = p[prev] + t*(p[k] - p[prev]);
-            }
-        }
-        else
-        {
-            if (sp < 0)
-            {
-                const double t = sp/(sp - sk);
-                neg[mn] = p[prev] + t*(p[k] - p[prev]);
-                sNeg[mn] = 0;
-                ++mn;
-            }
-            if (sk > 0)
-            {
-                if (sp <= 0)
-                {
-                    const double t = sk/(sk - sp);
-                    pos[mp++] = p[k] + t*(p[prev] - p[k]);
-                }
-                pos[mp++] = p[k];
-            }
-            else if (sp > 0)
-            {
-                const double t = sp/(sp - sk);
-                pos[mp++] = p[prev] + t*(p[k] - p[prev]);
-            }
-        }
-        prev = k;
-    }
-    nNeg = mn < 3 ? 0 : mn;
-    nPos = mp < 3 ? 0 : mp;
+    splitPolygonAt(p, s, [](int k) { return k; }, n, neg, sNeg, nNeg, pos, nPos);
 }
 
 

@@ -30,7 +30,6 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
 
     constexpr int cap = SubmergedFace::maxVertices;
     Vec3 p[cap];
-    double s[cap];
     int end = 0;
     const auto faces = P.faces();
     const int* faceVertices = P.faceVertices().data();
@@ -98,14 +97,17 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             addWet(f, m);
             continue;
         }
+        // Both sides: the heights first, as on the wet side alone, so that
+        // a face wholly above or below is copied once, to its polygon, and
+        // a cut one is split reading the frame's vertices in place (the
+        // same polygons as from a gathered copy, bit for bit)
+        const auto at = [fv](int k) { return fv[k]; };
         int nBelow = 0, nAbove = 0;
         for (int k = 0; k < n; ++k)
         {
-            const int v = fv[k];
-            p[k] = frame.r[v];
-            s[k] = frame.h[v];
-            nBelow += s[k] < 0;
-            nAbove += s[k] > 0;
+            const double hk = frame.h[fv[k]];
+            nBelow += hk < 0;
+            nAbove += hk > 0;
         }
         if (nAbove > 0)
         {
@@ -116,7 +118,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             {
                 for (int k = 0; k < n; ++k)
                 {
-                    qd[k] = p[k];
+                    qd[k] = frame.r[fv[k]];
                 }
             }
             else if (nBelow > 0)
@@ -125,7 +127,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 Vec3* q = frame.wetVertex + end;
                 double* hq = frame.wetHeight + end;
                 int m;
-                splitPolygon(p, s, n, q, hq, m, qd, md);
+                splitPolygonAt(frame.r, frame.h, at, n, q, hq, m, qd, md);
                 if (md > 0) addDry(f, md);
                 if (m > 0) addWet(f, m);
                 continue;
@@ -135,7 +137,11 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 // Vertices on the plane, none below: the dry clip alone
                 double sNeg[cap];
                 double sOut[cap];
-                for (int k = 0; k < n; ++k) sNeg[k] = -s[k];
+                for (int k = 0; k < n; ++k)
+                {
+                    p[k] = frame.r[fv[k]];
+                    sNeg[k] = -frame.h[fv[k]];
+                }
                 md = clipNegative(p, sNeg, n, qd, sOut);
             }
             if (md > 0) addDry(f, md);
@@ -152,13 +158,13 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             // A face entirely below is its own wet polygon
             for (int k = 0; k < n; ++k)
             {
-                q[k] = p[k];
-                hq[k] = s[k];
+                q[k] = frame.r[fv[k]];
+                hq[k] = frame.h[fv[k]];
             }
         }
         else
         {
-            m = clipNegative(p, s, n, q, hq);
+            m = clipNegativeAt(frame.r, frame.h, at, n, q, hq);
             if (m == 0) continue;
         }
         addWet(f, m);

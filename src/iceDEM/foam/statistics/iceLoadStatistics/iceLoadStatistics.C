@@ -80,7 +80,7 @@ void Foam::functionObjects::iceLoadStatistics::openFiles()
         << " [N]; balanceRatio = (load + momentumRate)/drive" << nl
         << "# time samples transientEnd loadX loadY driveX driveY load drive"
         << " ratio ratioHalfWidth lag1 correlated steady momentumRate"
-        << " balanceRatio" << endl;
+        << " balanceRatio balanceFloor" << endl;
 }
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
@@ -260,6 +260,9 @@ bool Foam::functionObjects::iceLoadStatistics::execute()
     const ::iceDEM::Vec3 F = acc_->F/h;
     const ::iceDEM::Vec3 W = acc_->W/h;
     const ::iceDEM::Vec3 D = acc_->D/h;
+    Ex_.push_back(acc_->E.x());
+    Ey_.push_back(acc_->E.y());
+    steps_.push_back(acc_->steps);
     acc_->reset();
 
     scalarList T;

@@ -15,6 +15,7 @@ Description
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace
 {
@@ -141,6 +142,19 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
         momentumRate = ((Px_.back() - p0x)*ex + (Py_.back() - p0y)*ey)/duration;
     }
     const double balance = dMag > 0 ? (load + momentumRate)/dMag : NAN;
+    // What balance - 1 can resolve: the leapfrog's end-point term over the
+    // window and the rounding of N steps' sums (iceLoadStatistics.H)
+    double Ewx = 0, Ewy = 0, steps = 0;
+    for (size_t k = start; k < t_.size(); ++k)
+    {
+        Ewx += Ex_[k];
+        Ewy += Ey_[k];
+        steps += steps_[k];
+    }
+    const double floor = dMag > 0 && duration > 0
+      ? std::abs(Ewx*ex + Ewy*ey)/(duration*dMag)
+      + steps*std::numeric_limits<double>::epsilon()
+      : NAN;
     const double ratioHW = dMag > 0 && bd.batches ? bd.halfWidth/dMag : NAN;
 
     double meanF = 0, sdF = 0, maxF = 0, p99F = 0;
@@ -180,7 +194,7 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
         {
             os  << ratio << ' ' << ratioHW << ' ' << bd.lag1 << ' '
                 << bd.correlated << ' ' << steady << ' ' << momentumRate
-                << ' ' << balance;
+                << ' ' << balance << ' ' << floor;
         }
         else if (!(dMag > 0))
         {
@@ -221,7 +235,8 @@ void Foam::functionObjects::iceLoadStatistics::writeStatistics()
             {
                 Info<< " +- " << ratioHW;
             }
-            Info<< ", (load + dP/dt)/drive " << balance;
+            Info<< ", (load + dP/dt)/drive " << balance
+                << " (resolves " << floor << ')';
         }
         if (!steady)
         {

@@ -17,14 +17,15 @@ Description
 
 // * * * * * * * * * * * * * * * Accumulator * * * * * * * * * * * * * * * //
 
-void Foam::functionObjects::iceLoadStatistics::accumulator::demStep
+void Foam::functionObjects::iceLoadStatistics::accumulator::loads
 (
-    const iceDEMCase& demCase,
-    scalar h
+    const ::iceDEM::World& w,
+    ::iceDEM::Vec3& f,
+    ::iceDEM::Vec3& wl,
+    ::iceDEM::Vec3& d
 )
 {
-    const ::iceDEM::World& w = demCase.world();
-    ::iceDEM::Vec3 f = ::iceDEM::Vec3::Zero();
+    f.setZero();
     for (std::size_t k = 0; k < bodies.size(); ++k)
     {
         label& b = bodies[k];
@@ -43,7 +44,7 @@ void Foam::functionObjects::iceLoadStatistics::accumulator::demStep
         // list's rebuild when inflow/outflow removes floes
         f += w.bodies()[b].force;
     }
-    ::iceDEM::Vec3 wl = ::iceDEM::Vec3::Zero();
+    wl.setZero();
     if (!walls.empty())
     {
         w.wallContactForces(wallForce);
@@ -52,10 +53,32 @@ void Foam::functionObjects::iceLoadStatistics::accumulator::demStep
             wl += wallForce[k];
         }
     }
+    d = w.modelForceOnFreeBodies();
+}
+
+
+void Foam::functionObjects::iceLoadStatistics::accumulator::demStep
+(
+    const iceDEMCase& demCase,
+    scalar h
+)
+{
+    ::iceDEM::Vec3 f, wl, d;
+    loads(demCase.world(), f, wl, d);
     F += h*f;
     W += h*wl;
-    D += h*w.modelForceOnFreeBodies();
+    D += h*d;
+    const ::iceDEM::Vec3 g = d - f - wl;
+    // The step's two half kicks used the last step's net force and this
+    // one's; the sums above take this one's for the whole step
+    if (netKnown)
+    {
+        E += 0.5*h*(net - g);
+    }
+    net = g;
+    netKnown = true;
     duration += h;
+    ++steps;
 }
 
 
@@ -64,7 +87,9 @@ void Foam::functionObjects::iceLoadStatistics::accumulator::reset()
     F.setZero();
     W.setZero();
     D.setZero();
+    E.setZero();
     duration = 0;
+    steps = 0;
 }
 
 
@@ -176,6 +201,13 @@ void Foam::functionObjects::iceLoadStatistics::connect()
 
     c.addStepObserver(acc_);
     P0_ = floeMomentum();
+    {
+        // The force the first step's first half kick takes
+        ::iceDEM::Vec3 f, wl, d;
+        acc_->loads(w, f, wl, d);
+        acc_->net = d - f - wl;
+        acc_->netKnown = true;
+    }
 
     Info<< type() << ' ' << name() << ": structure bodies "
         << acc_->bodies.size() << ", walls " << acc_->walls.size()
