@@ -296,7 +296,11 @@ int findContacts
 
     // Corners of a patch near each other share their weight (the merge
     // partition, narrowPhaseMerge.H)
-    partitionMerges(out, col.n, SA.radius(), SB.radius(), s.mergeSharePower);
+    partitionMerges
+    (
+        out, col.n, SA.radius(), SB.radius(), s.mergeSharePower,
+        s.parallelEdgeSin*(SA.radius() + SB.radius())
+    );
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
