@@ -296,11 +296,7 @@ int findContacts
 
     // Corners of a patch near each other share their weight (the merge
     // partition, narrowPhaseMerge.H)
-    partitionMerges
-    (
-        out, col.n, SA.radius(), SB.radius(), s.mergeSharePower,
-        s.parallelEdgeSin*(SA.radius() + SB.radius())
-    );
+    partitionMerges(out, col.n, SA.radius(), SB.radius(), s.mergeSharePower);
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
