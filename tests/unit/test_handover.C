@@ -450,6 +450,10 @@ TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 // with the union replaced by a smooth largest weight 2, 3 and 1 (39 and
 // 40; 27, 28 and 39; 37, 1.2e-2): narrowPhaseMerge.H, "What it does not
 // cover". This, not the single step size above, is what §1 has to pass.
+// The support-gap design written down there (positional windows, w =
+// bandFade(g/l)), built in the round after (commit 1d8cafb of branch gap,
+// reverted), fails 3, 7 and 3 pairs with the merge partition unchanged and
+// more with the count-once rules tried (narrowPhaseMerge.H, the last item).
 // A failing pair's worst impact is listed step by step (listPairContacts).
 // Run it with --gtest_also_run_disabled_tests (about a minute of CPU)
 TEST(handover, DISABLED_sevenAndTenVertexHullsAtThreeTimeSteps)
