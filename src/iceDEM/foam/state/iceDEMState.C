@@ -211,6 +211,13 @@ void Foam::iceDEMState::apply(::iceDEM::World& world) const
     );
 
     world.setTime(d.get<scalar>("time"));
+
+    // The multi-rate step's place in its outer step (written with
+    // bodyForceInterval > 1; absent: at a boundary)
+    world.setBodyForcePhase
+    (
+        int(integerOf(d, "bodyForcePhase", d.getOrDefault<scalar>("bodyForcePhase", 0), 0, 1000000))
+    );
 }
 
 
@@ -412,6 +419,10 @@ bool Foam::iceDEMState::writeData(Ostream& os) const
 
     os.writeEntry("time", w.time());
     os.writeEntry("step", scalar(w.stepIndex()));
+    if (w.settings().bodyForceInterval > 1)
+    {
+        os.writeEntry("bodyForcePhase", scalar(w.bodyForcePhase()));
+    }
 
     wordList names(n);
     vectorList x(n), v(n), L(n), F(n), T(n);
