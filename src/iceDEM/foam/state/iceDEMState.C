@@ -212,10 +212,11 @@ void Foam::iceDEMState::apply(::iceDEM::World& world) const
 
     world.setTime(d.get<scalar>("time"));
 
-    // The multi-rate step's place in its outer step (written with
-    // bodyForceInterval > 1; absent: at a boundary)
-    world.setBodyForcePhase
+    // The multi-rate step's schedule (written with bodyForceInterval > 1;
+    // absent: a single-rate state, at a boundary)
+    world.setRestartSchedule
     (
+        int(integerOf(d, "bodyForceInterval", d.getOrDefault<scalar>("bodyForceInterval", 1), 1, 1000000)),
         int(integerOf(d, "bodyForcePhase", d.getOrDefault<scalar>("bodyForcePhase", 0), 0, 1000000))
     );
 }
@@ -419,8 +420,9 @@ bool Foam::iceDEMState::writeData(Ostream& os) const
 
     os.writeEntry("time", w.time());
     os.writeEntry("step", scalar(w.stepIndex()));
-    if (w.settings().bodyForceInterval > 1)
+    if (w.bodyForceInterval() > 1)
     {
+        os.writeEntry("bodyForceInterval", scalar(w.bodyForceInterval()));
         os.writeEntry("bodyForcePhase", scalar(w.bodyForcePhase()));
     }
 
