@@ -623,56 +623,6 @@ void World::wallContactForces(std::vector<Vec3>& f) const
 }
 
 
-void World::setRestartSchedule(int interval, int phase)
-{
-    restartInterval_ = std::max(1, interval);
-    restartPhase_ = std::max(0, phase);
-}
-
-
-void World::applyRestartSchedule()
-{
-    const int k = bodyForceInterval();
-    const int kOld = restartInterval_;
-    const int phase = restartPhase_;
-    restartInterval_ = 0;
-    if (kOld == k)
-    {
-        bodyForcePhase_ = phase;
-        return;
-    }
-    // The slow force of the restart pose (computeForces above) times what
-    // the saved kick force lacks of it
-    const double add = k - (phase == 0 ? kOld : 0);
-    const bool models = modelForce_.size() == bodies_.size();
-    for (std::size_t i = 0; i < bodies_.size(); ++i)
-    {
-        Body& b = bodies_[i];
-        if (!b.isFree()) continue;
-        Vec3 f = b.mass*settings_.gravity;
-        if (models)
-        {
-            f += modelForce_[i];
-            b.torque += add*modelTorque_[i];
-        }
-        b.force += add*f;
-    }
-    bodyForcePhase_ = 0;
-    std::ostringstream msg;
-    msg << "bodyForceInterval " << k << " differs from the restart state's ("
-        << kOld << ", " << phase << " steps into an outer step): the kick"
-        << " forces are corrected to the new interval and a new outer step"
-        << " starts";
-    if (phase != 0)
-    {
-        msg << "; the state was written inside an outer step, whose closing"
-            << " kick is lost once (write at an outer step's end for an"
-            << " exact change)";
-    }
-    warnings_.push_back(msg.str());
-}
-
-
 Vec3 World::modelForceOnFreeBodies() const
 {
     Vec3 f = Vec3::Zero();
