@@ -54,6 +54,8 @@ Usage
                               (default: the core's default)
       -floeDamping on|off     floating: floe damping (default on, as in
                               both solvers wherever there is water)
+      -bodyForceInterval k    floating: the multi-rate step, body forces
+                              every k-th step (default 1; doc/caseFiles.md)
       -hydroAccuracy          floating: instead of timing, each floe's drag,
                               buoyancy and (with -wind) wind by every
                               shortcut against its reference (after
@@ -259,6 +261,7 @@ struct Options
     double wind = 0;                //!< floating: wind along x [m/s]; 0: none
     std::string windIntegration;    //!< empty: the core's default
     bool floeDamping = true;        //!< floating: floe damping on
+    int bodyForceInterval = 1;      //!< floating: the multi-rate step's k
     bool hydroAccuracy = false;     //!< floating: accuracy of the shortcuts
     std::vector<int> sizes{500, 2000, 8000, 20000};
     int compactN = 2000;
@@ -283,7 +286,7 @@ struct Options
 {
     std::cerr << "demBenchmark: " << msg << "\n"
         "usage: demBenchmark [-fields drift,compact,float] [-N 500,2000,...]"
-        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-windIntegration exact|sampled] [-floeDamping on|off] [-hydroAccuracy] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
+        " [-compactN n] [-floatN n] [-dragIntegration exact|sampled] [-wind U] [-windIntegration exact|sampled] [-floeDamping on|off] [-bodyForceInterval k] [-hydroAccuracy] [-threads 1,2] [-steps s] [-compactSteps s] [-reps r] [-warmup T]"
         " [-duration T] [-compactTime T] [-push P] [-skin S] [-lloyd K] [-seed K]"
         " [-cache DIR] [-callgrind]\n";
     std::exit(2);
@@ -324,6 +327,7 @@ Options parseOptions(int argc, char* argv[])
             if (v != "on" && v != "off") usage("-floeDamping: on or off");
             o.floeDamping = v == "on";
         }
+        else if (opt == "-bodyForceInterval") o.bodyForceInterval = std::max(1, std::atoi(value().c_str()));
         else if (opt == "-threads") o.threads = parseIntList(value());
         else if (opt == "-steps") o.steps = std::atoi(value().c_str());
         else if (opt == "-duration") o.duration = std::atof(value().c_str());
@@ -504,6 +508,7 @@ std::unique_ptr<World> buildWorld
     ws.gravity = f.floating ? Vec3(0, 0, -kGravity) : Vec3::Zero();
     ws.skin = o.skin;
     ws.featureSkin = o.featureSkin;
+    ws.bodyForceInterval = o.bodyForceInterval;
     auto world = std::make_unique<World>(ws);
 
     Material ice;
@@ -1163,8 +1168,9 @@ int main(int argc, char* argv[])
             f.floating = true;
             std::printf("# field=floating floes=%zu box=%.1f m: gravity, buoyancy,"
                 " empirical drag (current %g m/s along x), floe damping %s,"
-                " wind %g m/s along x\n", f.floes.size(),
-                f.xmax - f.xmin, kCurrent, o.floeDamping ? "on" : "off", o.wind);
+                " wind %g m/s along x, body forces every %d steps\n", f.floes.size(),
+                f.xmax - f.xmin, kCurrent, o.floeDamping ? "on" : "off", o.wind,
+                o.bodyForceInterval);
             if (o.hydroAccuracy)
             {
                 hydroAccuracy(f, o);

@@ -50,6 +50,10 @@ World::World(const WorldSettings& settings)
     {
         throw Error("need 0 < contactStepsMin <= contactStepsWarn", "contactStepsMin");
     }
+    if (settings_.bodyForceInterval < 1)
+    {
+        throw Error("bodyForceInterval must be an integer >= 1", "bodyForceInterval");
+    }
 }
 
 
@@ -587,6 +591,7 @@ void World::initialise(bool restart)
             bodies_[i].force = F[i];
             bodies_[i].torque = T[i];
         }
+        if (restartInterval_ > 0) applyRestartSchedule();
     }
     else
     {
@@ -621,11 +626,14 @@ void World::wallContactForces(std::vector<Vec3>& f) const
 Vec3 World::modelForceOnFreeBodies() const
 {
     Vec3 f = Vec3::Zero();
+    // Multi-rate step: an inner step kicked with no model force
+    const int interval = bodyForceInterval();
+    if (interval > 1 && bodyForcePhase_ != 0) return f;
     for (std::size_t b = 0; b < modelForce_.size(); ++b)
     {
         if (bodies_[b].isFree()) f += modelForce_[b];
     }
-    return f;
+    return interval > 1 ? Vec3(double(interval)*f) : f;
 }
 
 

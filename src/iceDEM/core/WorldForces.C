@@ -432,7 +432,7 @@ void World::pairForces(double dtTangential)
 }
 
 
-void World::sumBodyForces(double dtKick)
+void World::sumBodyForces(double dtKick, int slowScale)
 {
     const int N = static_cast<int>(bodies_.size());
 
@@ -451,7 +451,7 @@ void World::sumBodyForces(double dtKick)
         bodies_[b].torque = c.torque;
     }
 
-    const bool models = !forceModels_.empty();
+    const bool models = !forceModels_.empty() && slowScale > 0;
     if (models)
     {
         for (int b = begin; b < end; ++b)
@@ -471,25 +471,53 @@ void World::sumBodyForces(double dtKick)
         }
     }
 
+    if (bodyForceInterval() == 1)
+    {
+        for (int b = begin; b < end; ++b)
+        {
+            Body& body = bodies_[b];
+            if (models)
+            {
+                body.force += modelForce_[b];
+                body.torque += modelTorque_[b];
+            }
+            if (body.isFree())
+            {
+                body.force += body.mass*settings_.gravity;
+                // Second half kick of a step (velocity Verlet)
+                if (dtKick > 0) halfKick(body, dtKick);
+            }
+        }
+        return;
+    }
+
+    // Multi-rate step (WorldStep.C): a free body's slow force (models and
+    // gravity) enters its kick force slowScale times where it is
+    // evaluated, not at all in an inner step; a fixed or prescribed body
+    // is never kicked and keeps the load it takes
     for (int b = begin; b < end; ++b)
     {
         Body& body = bodies_[b];
-        if (models)
+        if (slowScale > 0)
         {
-            body.force += modelForce_[b];
-            body.torque += modelTorque_[b];
+            Vec3 f = modelForce_[b];
+            Vec3 t = modelTorque_[b];
+            if (body.isFree())
+            {
+                f += body.mass*settings_.gravity;
+                f *= double(slowScale);
+                t *= double(slowScale);
+            }
+            body.force += f;
+            body.torque += t;
         }
-        if (body.isFree())
-        {
-            body.force += body.mass*settings_.gravity;
-            // Second half kick of a step (velocity Verlet)
-            if (dtKick > 0) halfKick(body, dtKick);
-        }
+        // Second half kick of a step (velocity Verlet)
+        if (body.isFree() && dtKick > 0) halfKick(body, dtKick);
     }
 }
 
 
-void World::bodyForces(double dtKick)
+void World::bodyForces(double dtKick, int slowScale)
 {
     const int N = static_cast<int>(bodies_.size());
 
@@ -502,7 +530,7 @@ void World::bodyForces(double dtKick)
 
     #pragma omp parallel if(N >= minParallelBodies)
     {
-        sumBodyForces(dtKick);
+        sumBodyForces(dtKick, slowScale);
     }
 }
 
@@ -517,7 +545,9 @@ void World::computeForces(double dtTangential)
     {
         pairForces(dtTangential);
     }
-    bodyForces(0);
+    // A start is an outer step's boundary; a body inserted in the middle
+    // of an outer step takes the slow kick of the rest of it
+    bodyForces(0, std::max(1, bodyForceInterval() - bodyForcePhase_));
 }
 
 

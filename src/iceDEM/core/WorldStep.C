@@ -18,6 +18,127 @@ namespace iceDEM
 
 using namespace worldDetail;
 
+/*  The step's schedule: a multi-rate step for the body forces (issue 16)
+
+    The contact forces change within a few steps (a Hertz contact lasts
+    some 10-30 of them); the body forces (buoyancy, water drag, wind, floe
+    damping: every BodyForceModel) follow the floes' heave and roll, whose
+    periods are hundreds of steps, and cost as much as the contacts (the
+    study point: 46 % of a step, tests/benchmark/README.md). So the models
+    are evaluated every k-th step only (WorldSettings::bodyForceInterval,
+    entry bodyForceInterval of constant/iceDEMProperties), the contacts at
+    every step.
+
+    Scheme: impulse multiple time stepping (Verlet-I / r-RESPA; Grubmueller
+    et al. 1991, Tuckerman, Berne & Martyna 1992). Over an outer step of
+    k steps, H = k dt, with the slow force S = models + gravity of a free
+    body (gravity goes with buoyancy, which nearly cancels it: a floe at
+    rest gets no kick; with the contacts it would sag by g H^2/8 within
+    every outer step) and the fast force C = contacts:
+        v += H/2 S(x_0)                      slow half kick
+        k times velocity Verlet with C alone (dt)
+        v += H/2 S(x_k)                      slow half kick
+    The two slow kicks of consecutive outer steps meet at the boundary, so
+    in the code a boundary step's kick force is C + k S and an inner
+    step's C: the same half kicks as the single-rate step, the models not
+    called in between. With k = 1 it is velocity Verlet unchanged (the
+    same sums in the same order: results bit for bit).
+
+    Why not the models' force held for k steps (zero-order hold): holding
+    an old force is not time-reversible and not symplectic, so the floes'
+    hydrostatic energy drifts (a heaving floe gains or loses amplitude
+    every period). The impulse scheme is a composition of exact flows of
+    the split Hamiltonian (kick, Verlet, kick): symplectic and reversible
+    for the conservative part (buoyancy, gravity, contacts), second order,
+    and its energy error stays bounded.
+
+    Stability and resonance:
+    - The slow part alone is velocity Verlet with step H on the floes'
+      hydrostatic modes: stable for omega H < 2, i.e. H < T/pi, T the
+      shortest heave, roll or pitch period; the period's relative error is
+      (omega H)^2/24 (the test's scaling). The case reader stops above
+      H = T_min/pi (shortestHydrostaticPeriod at the start poses).
+    - Resonance with the fast modes: impulses every H excite a contact's
+      oscillation (period 2 t_c, t_c the Hertz contact time) when H is near
+      a multiple of its half period; linear resonance first at H = t_c,
+      nonlinear at a third of the period (Ma, Izaguirre & Skeel 2003, SIAM
+      J. Sci. Comput. 24:1951). The reader stops above H = 2 t_c/3, below
+      every resonance of the contacts, whose own step dt is unchanged.
+    - Velocity-dependent forces (drag, wind, floe damping) are evaluated
+      explicitly with the velocity of the boundary's first half kick, as
+      the single-rate step does; an explicit kick is stable for H below
+      twice the relaxation time m/c (drag: hundreds of seconds; floe
+      damping at a fraction zeta of critical: 1/(zeta omega), well above
+      T/pi for zeta <= 1).
+
+    The schedule is the world's state: bodyForcePhase_ counts the steps
+    since the last evaluation and is written with a restart state, so a
+    restart in the middle of an outer step continues it (the bodies' kick
+    forces of the last step are saved as before). A body inserted during a
+    run (inflow) starts with the kick of the rest of the outer step. A step
+    shorter than dt (the last of an interval that is not a multiple of dt)
+    counts as a step of the schedule. modelForceOnFreeBodies gives the
+    force the kicks applied (k times the models' at a boundary, zero in
+    between), so a force balance summing it over the steps sees the
+    impulses the floes received.
+*/
+
+void World::setBodyForcePhase(int phase)
+{
+    bodyForcePhase_ = std::max(0, phase);
+}
+
+
+void World::setRestartSchedule(int interval, int phase)
+{
+    restartInterval_ = std::max(1, interval);
+    restartPhase_ = std::max(0, phase);
+}
+
+
+void World::applyRestartSchedule()
+{
+    const int k = bodyForceInterval();
+    const int kOld = restartInterval_;
+    const int phase = restartPhase_;
+    restartInterval_ = 0;
+    if (kOld == k)
+    {
+        bodyForcePhase_ = phase;
+        return;
+    }
+    // The slow force of the restart pose (computeForces above) times what
+    // the saved kick force lacks of it
+    const double add = k - (phase == 0 ? kOld : 0);
+    const bool models = modelForce_.size() == bodies_.size();
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+    {
+        Body& b = bodies_[i];
+        if (!b.isFree()) continue;
+        Vec3 f = b.mass*settings_.gravity;
+        if (models)
+        {
+            f += modelForce_[i];
+            b.torque += add*modelTorque_[i];
+        }
+        b.force += add*f;
+    }
+    bodyForcePhase_ = 0;
+    std::ostringstream msg;
+    msg << "bodyForceInterval " << k << " differs from the restart state's ("
+        << kOld << ", " << phase << " steps into an outer step): the kick"
+        << " forces are corrected to the new interval and a new outer step"
+        << " starts";
+    if (phase != 0)
+    {
+        msg << "; the state was written inside an outer step, whose closing"
+            << " kick is lost once (write at an outer step's end for an"
+            << " exact change)";
+    }
+    warnings_.push_back(msg.str());
+}
+
+
 void World::stepBy(double dt)
 {
     if (!initialised_)
@@ -33,9 +154,14 @@ void World::stepBy(double dt)
     preparePairs();
     const int N = static_cast<int>(bodies_.size());
 
-    // Without body-force models the whole step is one parallel region;
-    // models prepare serially (flow sampling), between two regions
-    const bool oneRegion = forceModels_.empty();
+    // The multi-rate schedule: this step ends an outer step (evaluates the
+    // body forces) or is an inner one (contacts only)
+    const int interval = bodyForceInterval();
+    const bool slowStep = bodyForcePhase_ + 1 >= interval;
+
+    // Without body-force models to evaluate the whole step is one parallel
+    // region; models prepare serially (flow sampling), between two regions
+    const bool oneRegion = forceModels_.empty() || !slowStep;
     const bool listCoversBodies = nlist_->coversBodies(bodies_.size());
     bool rebuild = !listCoversBodies;
     const bool periodic = domain_ != nullptr;
@@ -88,12 +214,13 @@ void World::stepBy(double dt)
 
         pairForces(dt);
 
-        if (oneRegion) sumBodyForces(dt);
+        if (oneRegion) sumBodyForces(dt, slowStep ? interval : 0);
     }
 
     // Body-force models: their serial preparation, then the body sums and
     // the second half kick
-    if (!oneRegion) bodyForces(dt);
+    if (!oneRegion) bodyForces(dt, interval);
+    bodyForcePhase_ = slowStep ? 0 : bodyForcePhase_ + 1;
     time_ += dt;
     ++step_;
 

@@ -8,6 +8,7 @@
 #include "WaterClip.H"
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace iceDEM
@@ -161,6 +162,37 @@ Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
         sums.addTriangle(l[0], l[k], l[k + 1]);
     }
     return sums.waterplane(frame.x, frame.level);
+}
+
+
+double shortestHydrostaticPeriod(const World& world, const WaterSettings& water)
+{
+    const double rhoG = water.density*world.settings().gravity.norm();
+    double T = std::numeric_limits<double>::infinity();
+    if (!(rhoG > 0)) return T;
+    PolyhedronBuffer buffer;
+    const double twoPi = 2*M_PI;
+    const std::vector<Body>& bodies = world.bodies();
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+        const Body& b = bodies[i];
+        if (!b.isFree()) continue;
+        const PolyhedronView P = world.shapeOf(int(i)).outer(buffer);
+        const Mat3 R = b.rotation();
+        const Waterplane wp = waterplane(P, R, b.x, water.level);
+        if (!(wp.area > 0)) continue;
+        T = std::min(T, twoPi*std::sqrt(b.mass/(rhoG*wp.area)));
+
+        const SubmergedVolume sub = submergedVolume(P, R, b.x, water.level);
+        const double VBG = sub.volume*(sub.centroid.z() - b.x.z());
+        const Vec3 I = b.invInertia.cwiseInverse();
+        const Mat3 Iw = R*I.asDiagonal()*R.transpose();
+        const double k4 = rhoG*(wp.Iyy + VBG);
+        const double k5 = rhoG*(wp.Ixx + VBG);
+        if (k4 > 0) T = std::min(T, twoPi*std::sqrt(Iw(0, 0)/k4));
+        if (k5 > 0) T = std::min(T, twoPi*std::sqrt(Iw(1, 1)/k5));
+    }
+    return T;
 }
 
 

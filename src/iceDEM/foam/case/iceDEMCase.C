@@ -157,6 +157,7 @@ Foam::iceDEMCase::iceDEMCase
         readWater(resolvedFlow);
         readDomain();
         checkDerived();
+        checkBodyForceInterval();
     }
 
     Info<< "iceDEM: " << bodyNames_.size() << " bodies, "

@@ -10,6 +10,7 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "iceDEMCase.H"
+#include "hydro/FloeDamping.H"
 
 #include <cmath>
 #include <limits>
@@ -120,6 +121,72 @@ void Foam::iceDEMCase::checkDerived() const
                 << exit(FatalIOError);
         }
     }
+}
+
+
+void Foam::iceDEMCase::checkBodyForceInterval() const
+{
+    const ::iceDEM::WorldSettings& s = world_->settings();
+    const label k = s.bodyForceInterval;
+    if (k == 1)
+    {
+        return;
+    }
+    const dictionary& d = properties_;
+    if (!water_)
+    {
+        IOWarningInFunction(d)
+            << "Entry 'bodyForceInterval' (" << k << ") has no effect:"
+            << " without 'water' there are no body forces to evaluate"
+            << " less often" << nl << endl;
+        return;
+    }
+    if (dragType_ == "resolved")
+    {
+        // The two-way reaction and the flow sampling take the drag of
+        // every DEM step; with impulses every k steps their momentum
+        // exchange would need the schedule too
+        FatalIOErrorInFunction(d)
+            << "Entry 'bodyForceInterval' of constant/iceDEMProperties ("
+            << k << "): the multi-rate step is not available with drag"
+            << " type resolved yet (the flow's drag exchange follows every"
+            << " DEM step); use 1, or the empirical drag" << nl
+            << exit(FatalIOError);
+    }
+    const scalar H = k*s.timeStep;
+
+    // Resonance with the contacts (WorldStep.C): below 2/3 of the Hertz
+    // contact time (a third of the contact's period)
+    const scalar tc = world_->bodies().size()
+      ? world_->estimatedContactTime() : GREAT;
+    const scalar contactLimit = 2.0/3.0*tc;
+
+    // Stability of the slow part: omega H < 2 for the fastest hydrostatic
+    // mode of the floes at their poses in constant/iceField
+    ::iceDEM::WaterSettings water;
+    water.density = waterDensity_;
+    water.level = waterLevel_;
+    const scalar T = ::iceDEM::shortestHydrostaticPeriod(*world_, water);
+    const scalar hydroLimit = T/M_PI;
+
+    if (H > contactLimit || H > hydroLimit)
+    {
+        FatalIOErrorInFunction(d)
+            << "Entry 'bodyForceInterval' of constant/iceDEMProperties ("
+            << k << ") with 'deltaT' " << s.timeStep << " s gives an outer"
+            << " step of " << H << " s for the body forces: it must not"
+            << " exceed 2/3 of the estimated Hertz contact time ("
+            << contactLimit << " s, resonance with the contacts) nor"
+            << " 1/pi of the shortest heave, roll or pitch period of the"
+            << " floes (" << hydroLimit << " s, stability of the"
+            << " hydrostatic modes): at most bodyForceInterval "
+            << label(std::floor(min(contactLimit, hydroLimit)/s.timeStep))
+            << nl << exit(FatalIOError);
+    }
+    Info<< "iceDEM: multi-rate step: body forces every " << k
+        << " DEM steps (" << H << " s; limits " << contactLimit
+        << " s from the contact time, " << hydroLimit
+        << " s from the hydrostatic periods)" << nl;
 }
 
 

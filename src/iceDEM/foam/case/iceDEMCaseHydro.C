@@ -202,6 +202,8 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
     }
     world_->addForceModel(std::make_shared<::iceDEM::Buoyancy>(water));
     water_ = true;
+    waterDensity_ = water.density;
+    waterLevel_ = water.level;
 
     addFloeDamping(properties_, *world_, water);
     addWind(properties_, *world_, water);

@@ -15,6 +15,8 @@ Description
 #include "HashSet.H"
 #include "FixedList.H"
 
+#include <cmath>
+
 using namespace Foam::iceDEMChecks;
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
@@ -65,6 +67,21 @@ using namespace Foam::iceDEMChecks;
     s.contactCheckVelocity = positive(d, "contactCheckVelocity", 1);
     s.contactStepsWarn = positive(d, "contactStepsWarn", 10);
     s.contactStepsMin = nonNegative(d, "contactStepsMin", 3);
+
+    // Multi-rate step: an integer >= 1 (read as a scalar to say so)
+    {
+        const scalar k = d.getOrDefault<scalar>("bodyForceInterval", 1);
+        if (!(k >= 1 && k <= 1e6 && k == std::floor(k)))
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'bodyForceInterval' of constant/iceDEMProperties"
+                << " is " << k << ": it must be an integer >= 1 (the body"
+                << " forces are evaluated every bodyForceInterval-th DEM"
+                << " step; 1: every step)" << nl
+                << exit(FatalIOError);
+        }
+        s.bodyForceInterval = int(k);
+    }
 
     if (s.contactStepsMin > s.contactStepsWarn)
     {

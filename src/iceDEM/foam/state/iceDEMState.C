@@ -211,6 +211,14 @@ void Foam::iceDEMState::apply(::iceDEM::World& world) const
     );
 
     world.setTime(d.get<scalar>("time"));
+
+    // The multi-rate step's schedule (written with bodyForceInterval > 1;
+    // absent: a single-rate state, at a boundary)
+    world.setRestartSchedule
+    (
+        int(integerOf(d, "bodyForceInterval", d.getOrDefault<scalar>("bodyForceInterval", 1), 1, 1000000)),
+        int(integerOf(d, "bodyForcePhase", d.getOrDefault<scalar>("bodyForcePhase", 0), 0, 1000000))
+    );
 }
 
 
@@ -412,6 +420,11 @@ bool Foam::iceDEMState::writeData(Ostream& os) const
 
     os.writeEntry("time", w.time());
     os.writeEntry("step", scalar(w.stepIndex()));
+    if (w.bodyForceInterval() > 1)
+    {
+        os.writeEntry("bodyForceInterval", scalar(w.bodyForceInterval()));
+        os.writeEntry("bodyForcePhase", scalar(w.bodyForcePhase()));
+    }
 
     wordList names(n);
     vectorList x(n), v(n), L(n), F(n), T(n);
