@@ -111,29 +111,6 @@ public:
     }
 };
 
-//- Times of the upward zero crossings of a sampled signal (linear
-//  interpolation)
-std::vector<double> upCrossings
-(
-    const std::vector<double>& t,
-    const std::vector<double>& y
-)
-{
-    std::vector<double> c;
-    for (std::size_t k = 1; k < y.size(); ++k)
-    {
-        if (y[k - 1] < 0 && y[k] >= 0)
-        {
-            c.push_back(t[k - 1] + (t[k] - t[k - 1])*(-y[k - 1])/(y[k] - y[k - 1]));
-        }
-    }
-    return c;
-}
-
-double meanPeriod(const std::vector<double>& crossings)
-{
-    return (crossings.back() - crossings.front())/(crossings.size() - 1);
-}
 
 } // anonymous namespace
 

@@ -79,27 +79,6 @@ int addBox
     return w.addBody(shape, 0, Vec3::Zero(), q, v, omega);
 }
 
-std::vector<double> upCrossings
-(
-    const std::vector<double>& t,
-    const std::vector<double>& y
-)
-{
-    std::vector<double> c;
-    for (std::size_t k = 1; k < y.size(); ++k)
-    {
-        if (y[k - 1] < 0 && y[k] >= 0)
-        {
-            c.push_back(t[k - 1] + (t[k] - t[k - 1])*(-y[k - 1])/(y[k] - y[k - 1]));
-        }
-    }
-    return c;
-}
-
-double meanPeriod(const std::vector<double>& c)
-{
-    return (c.back() - c.front())/(c.size() - 1);
-}
 
 //- Heave of a 4 x 4 x h floe released at rest at 90 % of its draft, over
 //  about n periods: measured period and the draft from the mean position
@@ -126,57 +105,6 @@ void heave(int k, double dt, double h, int n, double& period, double& draft)
     draft = 0.5*h - 0.5*(zMin + zMax);
 }
 
-//- A field of polygonal floes about their draft, moving and colliding,
-//  with buoyancy, drag, wind and floe damping (test_wind's windField)
-std::unique_ptr<World> wetField(int n, unsigned seed, int k, double spacing = 3.0)
-{
-    WorldSettings s;
-    s.timeStep = 1e-3;
-    s.bodyForceInterval = k;
-    auto w = std::make_unique<World>(s);
-    const int mat = w->addMaterial(test::ice(1e9));
-    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
-    std::mt19937_64 rng(seed);
-    auto uni = [&](double a, double b) { return test::uniform(rng, a, b); };
-    const int side = int(std::ceil(std::sqrt(double(n))));
-    for (int i = 0; i < n; ++i)
-    {
-        const std::vector<Vec2> poly = test::randomFloeOutline(rng);
-        const int shape = w->addShape
-        (
-            DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1)
-        );
-        const Vec3 x((i % side)*spacing, (i/side)*spacing, uni(-0.45, -0.3));
-        w->addBody
-        (
-            shape, mat, x,
-            Quat(Eigen::AngleAxisd(uni(-0.05, 0.05), Vec3::UnitX())),
-            Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5))
-        );
-    }
-    w->addForceModel(std::make_shared<Buoyancy>(water));
-    w->addForceModel
-    (
-        std::make_shared<Drag>
-        (
-            water, DragSettings(),
-            std::make_shared<UniformCurrent>(Vec3(0.2, 0.1, 0))
-        )
-    );
-    w->addForceModel
-    (
-        std::make_shared<Wind>
-        (
-            water, WindSettings(),
-            WindHistory({{0, Vec3(15, 0, 0)}, {0.5, Vec3(0, 20, 0)}})
-        )
-    );
-    w->addForceModel
-    (
-        std::make_shared<FloeDamping>(water, FloeDampingSettings())
-    );
-    return w;
-}
 
 //- A model that adds nothing (a world with models, and no body force)
 class NoForce
@@ -425,14 +353,14 @@ TEST(MultiRate, restartInTheMiddleOfAnOuterStepEqualsUninterruptedRun)
     // k = 4; the restart is written after 303 steps (3 into an outer step)
     const int k = 4;
     const double cut = 0.303;
-    auto a = wetField(100, 11, k);
+    auto a = windyFloeField(100, 11, k);
     a->advanceTo(cut);
     ASSERT_EQ(a->bodyForcePhase(), 3);
     a->advanceTo(0.8);
 
-    auto b = wetField(100, 11, k);
+    auto b = windyFloeField(100, 11, k);
     b->advanceTo(cut);
-    auto c = wetField(100, 11, k);
+    auto c = windyFloeField(100, 11, k);
     test::restartFrom(*c, *b);
     ASSERT_EQ(c->bodyForcePhase(), 3);
     c->advanceTo(0.8);
@@ -441,7 +369,7 @@ TEST(MultiRate, restartInTheMiddleOfAnOuterStepEqualsUninterruptedRun)
 
     // Without the phase the restarted run starts a new outer step: it
     // differs (the test above sees the schedule)
-    auto e = wetField(100, 11, k);
+    auto e = windyFloeField(100, 11, k);
     test::restartFrom(*e, *b);
     e->setBodyForcePhase(0);
     e->advanceTo(0.8);
@@ -453,10 +381,10 @@ TEST(MultiRate, independentOfThreadCount)
 {
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
-    auto a = wetField(1200, 5, 4);
+    auto a = windyFloeField(1200, 5, 4);
     a->advanceTo(0.1);
     omp_set_num_threads(std::max(2, threads));
-    auto b = wetField(1200, 5, 4);
+    auto b = windyFloeField(1200, 5, 4);
     b->advanceTo(0.1);
     omp_set_num_threads(threads);
     EXPECT_GT(a->contactCount(), 0);
@@ -474,7 +402,7 @@ TEST(MultiRate, reportedDriveIsTheImpulseApplied)
     // balance takes, iceLoadStatistics), which is k times the models'
     // force at the outer steps' ends and zero in between
     const int k = 5;
-    auto w = wetField(16, 3, k, 12.0);
+    auto w = windyFloeField(16, 3, k, 12.0);
     w->initialise();
     auto momentum = [&]
     {

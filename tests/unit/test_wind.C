@@ -479,74 +479,15 @@ TEST(Wind, freeDriftSparseField)
 }
 
 
-namespace
-{
-
-//- A field of polygonal floes at about their draft, moving and colliding,
-//  with buoyancy, drag, a turning wind and floe damping
-std::unique_ptr<World> windField(int n, unsigned seed)
-{
-    WorldSettings s;
-    s.timeStep = 1e-3;
-    auto w = std::make_unique<World>(s);
-    const int mat = w->addMaterial(test::ice(1e9));
-    w->setPairProperties(mat, mat, PairProperties{0.2, 0.5});
-    std::mt19937_64 rng(seed);
-    auto uni = [&](double a, double b) { return test::uniform(rng, a, b); };
-    const int side = int(std::ceil(std::sqrt(double(n))));
-    const double pitch = 3.0;
-    for (int k = 0; k < n; ++k)
-    {
-        const std::vector<Vec2> poly = test::randomFloeOutline(rng);
-        const int shape = w->addShape
-        (
-            DilatedShape(ConvexPolyhedron::prism(poly, -0.4, 0.8), 0.1)
-        );
-        const Vec3 x((k % side)*pitch, (k/side)*pitch, uni(-0.45, -0.3));
-        w->addBody
-        (
-            shape, mat, x,
-            Quat(Eigen::AngleAxisd(uni(-0.05, 0.05), Vec3::UnitX())),
-            Vec3(uni(-2, 2), uni(-2, 2), 0), Vec3(0, 0, uni(-0.5, 0.5))
-        );
-    }
-    const WaterSettings water{1025, 0};
-    w->addForceModel(std::make_shared<Buoyancy>(water));
-    w->addForceModel
-    (
-        std::make_shared<Drag>
-        (
-            water, DragSettings(),
-            std::make_shared<UniformCurrent>(Vec3(0.2, 0.1, 0))
-        )
-    );
-    w->addForceModel
-    (
-        std::make_shared<Wind>
-        (
-            water, WindSettings(),
-            WindHistory({{0, Vec3(15, 0, 0)}, {0.5, Vec3(0, 20, 0)}})
-        )
-    );
-    w->addForceModel
-    (
-        std::make_shared<FloeDamping>(water, FloeDampingSettings())
-    );
-    return w;
-}
-
-} // anonymous namespace
-
-
 TEST(Wind, independentOfThreadCount)
 {
     // 1200 floes: the body-force models run on the threads' chunks
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
-    auto a = windField(1200, 5);
+    auto a = windyFloeField(1200, 5);
     a->advanceTo(0.1);
     omp_set_num_threads(std::max(2, threads));
-    auto b = windField(1200, 5);
+    auto b = windyFloeField(1200, 5);
     b->advanceTo(0.1);
     omp_set_num_threads(threads);
     EXPECT_GT(a->contactPairCount() + a->contactCount(), 0);
@@ -560,13 +501,13 @@ TEST(Wind, restartEqualsUninterruptedRun)
     // the restart time. As in the solvers, both runs stop at the write time
     // (advanceTo snaps the time to it), the restarted one starts there.
     const double cut = 0.3;
-    auto a = windField(100, 11);
+    auto a = windyFloeField(100, 11);
     a->advanceTo(cut);
     a->advanceTo(0.8);
 
-    auto b = windField(100, 11);
+    auto b = windyFloeField(100, 11);
     b->advanceTo(cut);
-    auto c = windField(100, 11);
+    auto c = windyFloeField(100, 11);
     restartFrom(*c, *b);
     c->advanceTo(0.8);
     EXPECT_GT(b->contactCount(), 0);
