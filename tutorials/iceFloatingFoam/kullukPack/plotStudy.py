@@ -127,16 +127,23 @@ def hullCounts(d, tStart, floes, pieces=0):
     (centre below -h/2: pushed down the cone or under the hull; a floating
     floe's centre is at about -0.38 h). Floes inserted by an inflow (ids
     after the pieces') count."""
-    f = os.path.join(d, "postProcessing/iceDEM/0/bodies.dat")
-    if not os.path.exists(f):
+    files = sorted(glob.glob(os.path.join(d, "postProcessing/iceDEM/*/bodies.dat")),
+                   key=lambda f: float(f.split("/")[-2]))
+    if not files:
         return float("nan"), float("nan"), float("nan"), float("nan")
+    # every session's file (a restart writes postProcessing/iceDEM/<start>/),
+    # a later session replacing the write times it repeats, as readSeries
+    rows = {}
+    for f in files:
+        for line in open(f):
+            if not line.startswith("#") and line.strip():
+                v = line.split()
+                rows[(float(v[0]), int(v[1]))] = v
     h = float(readParameters(d)["thickness"])
     under, down, near, vx = {}, {}, {}, []
-    for line in open(f):
-        if line.startswith("#"):
-            continue
-        v = line.split()
-        t, i = float(v[0]), int(v[1])
+    for key in sorted(rows):
+        v = rows[key]
+        t, i = key
         if t <= tStart or floes <= i < floes + pieces or (not pieces and i >= floes):
             continue
         x, y, z = float(v[2]), float(v[3]), float(v[4])

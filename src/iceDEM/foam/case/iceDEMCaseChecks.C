@@ -175,11 +175,12 @@ void Foam::iceDEMCase::checkBodyForceInterval() const
             << "Entry 'bodyForceInterval' of constant/iceDEMProperties ("
             << k << ") with 'deltaT' " << s.timeStep << " s gives an outer"
             << " step of " << H << " s for the body forces: it must not"
-            << " exceed 2/3 of the estimated Hertz contact time ("
-            << contactLimit << " s, resonance with the contacts) nor"
-            << " 1/pi of the shortest heave, roll or pitch period of the"
-            << " floes (" << hydroLimit << " s, stability of the"
-            << " hydrostatic modes): at most bodyForceInterval "
+            << " exceed " << contactLimit << " s, 2/3 of the estimated"
+            << " Hertz contact time " << tc << " s (resonance with the"
+            << " contacts), nor " << hydroLimit << " s, 1/pi of the"
+            << " shortest heave, roll or pitch period of the floes " << T
+            << " s (stability of the hydrostatic modes): at most"
+            << " bodyForceInterval "
             << label(std::floor(min(contactLimit, hydroLimit)/s.timeStep))
             << nl << exit(FatalIOError);
     }
