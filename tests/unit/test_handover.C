@@ -7,7 +7,6 @@
 
 #include "testWorlds.H"
 #include "contact/NarrowPhase.H"
-#include "contact/narrowPhaseMerge.H"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -66,13 +65,12 @@ struct ImpactRecord
 };
 
 //- Diagnosis of a failing impact (issue 18 §1): one line for a step, the
-//  step's energy change (of E0) and every contact between the two bodies
-//  (feature pair, features, merged weight, overlap, point), as the World's
-//  narrow phase gives them, and each contact's support gap g = dist -
-//  gap(n): its core distance less the separation of the cores along its
-//  own normal (min over B of n . q - max over A of n . p), 0 for the
-//  closest pair of convex cores and positive for every other, whichever
-//  feature pair computes it (narrowPhaseMerge.H)
+//  step's energy change (of E0) and every term between the two bodies
+//  (type, feature keys, weight W, overlap, point), as the World's narrow
+//  phase gives them, and each term's support gap g = dist - gap(n): its
+//  core distance less the separation of the cores along its own normal
+//  (min over B of n . q - max over A of n . p), 0 for the closest pair of
+//  convex cores and positive for every other
 std::string listPairContacts(const World& w, int sa, int sb, double stepChange)
 {
     const Body& a = w.bodies()[0];
@@ -83,9 +81,9 @@ std::string listPairContacts(const World& w, int sa, int sb, double stepChange)
     for (const Vec3& p : w.shapes()[sb].core().vertices()) vb.push_back(Rb*p + b.x);
     const BodyView A{&w.shapes()[sa], va.data(), Ra, a.x, a.q};
     const BodyView B{&w.shapes()[sb], vb.data(), Rb, b.x, b.q};
-    FoundContact found[narrowPhase::maxMergeContacts];
+    FoundContact found[World::maxContactsPerPair];
     Vec3 axis = Vec3::Zero();
-    const int n = findContacts(A, B, NarrowPhaseSettings(), axis, found, narrowPhase::maxMergeContacts);
+    const int n = findContacts(A, B, NarrowPhaseSettings(), axis, found, World::maxContactsPerPair);
     char buf[256];
     std::snprintf(buf, sizeof buf, "  t %.6f dE %+.2e:", w.time(), stepChange);
     std::string line(buf);
@@ -395,30 +393,14 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 
 // The first battery (randomPairInABox: hulls of 7 and 10 points on a
 // sphere's shell, E = 1e9 Pa, 5 s each): 40 seeds, about 2,000 impacts.
-// Disabled: it still fails (see README.md, known limits). Old windows: 17
-// of the 37 pairs (three seeds draw a degenerate hull) had an impact above
-// the bound, the worst +202 %; with the bands: 5 of 37, 1.7e-4 to 5.7e-2,
-// where two corners of a shrinking patch merge; with the merge partition
-// (narrowPhaseMerge.H) and the band for nearly parallel crossings: 2 of 37
-// (2,082 impacts), the others keeping every impact within 5.6e-5: seed 19,
-// 8.9e-4 (a crossing appearing beside a vertex-face corner, both in their
-// tolerance bands: the union of their weights changes), and seed 39,
-// 2.0e-4 (a nearly parallel crossing fading across its band in about four
-// steps, its normal turning as 1/sin; 2.1e-2 before, when it ended with
-// its full weight at the wedge). Diagnosed in issue 18's last round (the
-// derivation in contact/narrowPhaseMerge.H, "What it does not cover"): in
-// seed 19 the vertex-face corner and the band crossing are one corner seen
-// through two windows (+3.1e-3 and -1.9e-3 as the crossing appears and
-// ends beside it, -2.1e-4 as the vertex-face contact ends with no
-// successor; the same with dt/2 and dt/4); in seed 39 a crossing of sine
-// 0.036 fades in 7 steps. The window factor proposed there, built in the
-// round after (commit 523f314 of branch handover, withdrawn), fixes seed 19
-// (2.3e-6) but breaks seeds 28 and 34 (8.3e-4, 5.8e-4); a fade towards
-// each boundary's successor (e590b92, withdrawn) breaks 13 pairs
-// (narrowPhaseMerge.H). Its two failures are one time step's sample: at
-// three steps (the next test) 2, 6 and 2 pairs fail, up to 1.8e-2.
-// Run it with --gtest_also_run_disabled_tests (about 10 s of CPU)
-TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
+// On main (windowed feature pairs, tolerance bands, the merge partition) 2
+// of the 37 pairs failed (seed 19, 8.9e-4: a band crossing appearing beside
+// a vertex-face corner; seed 39, 2.0e-4: a nearly parallel crossing fading
+// in a few steps; the designs tried before are listed in README.md's
+// history of issue 18). The excess potential (NarrowPhase.H), continuous by
+// construction: every impact within 6.4e-6 of the total energy, drift
+// within 1.1e-5 (2,080 impacts). About 15 s of CPU
+TEST(handover, sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
     int impacts = 0;
     for (unsigned seed = 1; seed <= 40; ++seed)
@@ -444,19 +426,17 @@ TEST(handover, DISABLED_sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 // The same battery at three time steps (2e-5, 1.5e-5 and 1e-5 s: every
 // pair follows three different trajectories, each impact resolved by 200
 // to 400 steps). The pairs that fail at one step size are a sample of the
-// configurations that jump: issue 18's round after e590b92 measured on main
-// (merge union) 2, 6 and 2 failing pairs (seeds 19 and 39; 19, 22, 27,
-// 36, 37 and 39; 5 and 19), up to 1.7e-2 of the energy in one impact, and
-// with the union replaced by a smooth largest weight 2, 3 and 1 (39 and
-// 40; 27, 28 and 39; 37, 1.2e-2): narrowPhaseMerge.H, "What it does not
-// cover". This, not the single step size above, is what §1 has to pass.
-// The support-gap design written down there (positional windows, w =
-// bandFade(g/l)), built in the round after (commit 1d8cafb of branch gap,
-// reverted), fails 3, 7 and 3 pairs with the merge partition unchanged and
-// more with the count-once rules tried (narrowPhaseMerge.H, the last item).
-// A failing pair's worst impact is listed step by step (listPairContacts).
-// Run it with --gtest_also_run_disabled_tests (about a minute of CPU)
-TEST(handover, DISABLED_sevenAndTenVertexHullsAtThreeTimeSteps)
+// configurations that jump: on main 2, 6 and 2 pairs failed (seeds 19 and
+// 39; 19, 22, 27, 36, 37 and 39; 5 and 19), up to 1.8e-2 of the energy in
+// one impact. The excess potential (NarrowPhase.H): 111 pair-runs, 6,318
+// impacts, the worst impact 6.4e-6, 4.6e-6 and 2.8e-6 of the total energy
+// at the three steps, drift at most 1.1e-5. Its first form (the boundary
+// part a plain minimum of the four end distances) failed 2, 4 and 1 pairs
+// (kinks where two ends tie, up to 1.7e-3); with a blend of the ends
+// (weights g^-2), 0, 1 and 1 (seed 39: an edge lying along another edge,
+// sine 0.0055, both ends in reach, 1.6e-3). A failing pair's worst impact
+// is listed step by step (listPairContacts). About a minute of CPU
+TEST(handover, sevenAndTenVertexHullsAtThreeTimeSteps)
 {
     for (const double dt : {2e-5, 1.5e-5, 1e-5})
     {
@@ -714,39 +694,38 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
         hertzJump, simplifiedJump, ratioJump, ratioSmooth
     );
     EXPECT_GE(handOvers, 50);
-    // The largest ratio of sqrt(R*) between feature pairs that hand over
-    // (equal radii r): an edge-edge contact at its cap k r (k =
-    // maxEdgeRadiusRatio) handed to vertex-edge (r/sqrt(2)) at the end of
-    // its edge: |F| changes by the factor sqrt(k sqrt(2)), a relative jump
-    // of 1 - 1/sqrt(k sqrt(2)) = 0.734 for k = 10. The sweep reaches it
-    // (measured 0.7341, the same at 2880 poses per turn, while the ratio's
-    // largest change between hand-overs halves: 0.118 -> 0.064); 1e-3 for
-    // the sweep's step. It must not grow: that would be a hand-over
-    // between pairs the law does not have
+    // The excess potential (NarrowPhase.H): a vertex term takes the radius
+    // of its closest feature's type (face r, edge r/sqrt(2), vertex r/2 for
+    // equal radii: a factor sqrt(2) in R* at each change, 2^(1/4) in its
+    // force, a relative jump of 1 - 2^(-1/4) = 0.159), its subtracted
+    // vertex-vertex terms follow it, and the edge-edge term keeps its type
+    // and fades out (its weight -> 0) at the end of its edge instead of
+    // handing its force over. Measured: 0.229 (seed 103; 0.159 at seeds
+    // 101, 106, 107, 108), where a vertex term and a subtracted
+    // vertex-vertex term change type at one pose. On main (windowed feature
+    // pairs) the edge-edge contact at its cap k r handed over to
+    // vertex-edge at full force: 1 - 1/sqrt(k sqrt(2)) = 0.734 for k = 10,
+    // which the sweep reached; the excess potential must stay below it,
+    // and above the single-term jump the sweep must reach
     const double k = WorldSettings().contact.maxEdgeRadiusRatio;
-    const double bound = 1 - 1/std::sqrt(k*std::sqrt(2.0));
-    EXPECT_LT(ratioJump, bound + 1e-3);
-    EXPECT_GT(ratioJump, bound - 1e-2) << "the sweep no longer reaches the worst hand-over";
+    const double mainBound = 1 - 1/std::sqrt(k*std::sqrt(2.0));
+    EXPECT_LT(ratioJump, mainBound);
+    EXPECT_GT(ratioJump, 1 - std::pow(2.0, -0.25) - 1e-2) << "the sweep no longer reaches a type change";
 }
 
 
 // hertzSimplified (one R* for every feature pair): the total contact force
 // on B and its moment about B's centroid are continuous through every
-// hand-over and merge the sweep passes (five random hull pairs, B turned
-// once at a held deepest overlap of 5 % of r_A + r_B, the sweep of
+// change of the pair's terms the sweep passes (five random hull pairs, B
+// turned once at a held deepest overlap of 5 % of r_A + r_B, the sweep of
 // hertzForceJumpAtHandOverIsBounded). A jump (a contact lost while loaded,
-// one counted twice, two corners merging into one) keeps its size when the
-// poses are doubled; a continuous change halves. The sweep runs at 5760
-// poses, the even ones being the 2880-pose sweep (same poses, bit for bit):
-// for each pair the largest step between consecutive poses (|dF|/|F|,
-// |dM|/(|F| R_B)) must fall below 0.7 of that at 2880 poses (measured: at
-// most 0.62). Without the merge partition (narrowPhaseMerge.H) two pairs
-// keep steps of 32 % and 47 % of |F| (seeds 101 and 108: an edge crossing
-// two sides of a face next to its corner; ratio 0.999). At 2880 poses a
-// steep but continuous change of the share power (seed 107's moment) is
-// not yet resolved (ratio 0.88, 0.51 at 11,520). Known remainder: at
-// 11,520 poses one step of 3.8 % of |F| at seed 108 does not halve
-// (README, known limits)
+// one counted twice) keeps its size when the poses are doubled; a
+// continuous change halves. The sweep runs at 5760 poses, the even ones
+// being the 2880-pose sweep (same poses, bit for bit): for each pair the
+// largest step between consecutive poses (|dF|/|F|, |dM|/(|F| R_B)) must
+// fall below 0.7 of that at 2880 poses. Measured with the excess potential
+// (NarrowPhase.H): at most 0.623 (main, windows and the merge partition:
+// 0.62; without the partition 0.999)
 TEST(handover, hertzSimplifiedForceAndMomentAreContinuous)
 {
     const int poses = std::getenv("SWEEP_POSES") ? 2*std::atoi(std::getenv("SWEEP_POSES")) : 5760;
@@ -806,12 +785,12 @@ TEST(handover, hertzSimplifiedForceAndMomentAreContinuous)
 // included) must keep the total energy within impactBound, each pair's
 // drift below 5e-3, and no overlap may reach half the smaller radius (the
 // model's range; Young's modulus is chosen for that, see broadPairInABox).
-// Measured (1 thread, with the merge partition): 40 pairs, 1,413 impacts,
-// the worst impact 9.8e-7 of the total energy, the worst drift 3.1e-6,
-// overlaps up to 0.33 r; about 30 s of CPU. Before the vertex-edge band (vertexEdgeBandWeight) one pair
-// (seed 6) changed the energy by 14 % in one impact: a vertex at the
-// shallow end of an edge lying along another edge appeared with its full
-// overlap as the two edges' sine fell below parallelEdgeSin
+// Measured (1 thread) with the excess potential (NarrowPhase.H): 40 pairs,
+// 1,359 impacts, the worst impact 1.5e-6 of the total energy, the worst
+// drift 3.2e-6, overlaps up to 0.38 r (main, windows and the merge
+// partition: 1,413 impacts, 9.8e-7, 3.1e-6, 0.33 r). Before the
+// vertex-edge band (main's history) one pair (seed 6) changed the energy
+// by 14 % in one impact
 TEST(handover, randomPolyhedraConserveEnergyAtEveryImpact)
 {
     const int threads = omp_get_max_threads();
@@ -847,265 +826,204 @@ TEST(handover, randomPolyhedraConserveEnergyAtEveryImpact)
     EXPECT_GE(impacts, 1000);
 }
 
-// The weight of a vertex on an edge with a leaning, nearly parallel edge at
-// the vertex (vertexEdgeBandWeight) depends on the relative position as well
-// as the orientation: its gradients (dw/dx_B, and dw/dphi_B about the
-// contact point), which give the contact's extra force and couple, must be
-// those of the weight itself. Central differences, with the vertex on A and
-// then on B
-TEST(handover, vertexEdgeBandWeightGradientMatchesFiniteDifferences)
+
+namespace
 {
-    // A box (top edge along x at y = 1, z = 0.5) and a tetrahedron whose
-    // vertex V sits above and beside that edge, one edge of V along x
-    // leaning down towards it (lean and cross about 0.028 < 0.05)
-    const Vec3 V(0, 1.03, 0.56);
-    const Vec3 d = Vec3(1, -0.02, -0.02).normalized();
-    const std::vector<Vec3> tet = {V, V + 0.6*d, V + Vec3(0, 0.5, 0.5), V + Vec3(0.3, 0.6, 0.2)};
-    for (int vertexOnA = 0; vertexOnA < 2; ++vertexOnA)
-    {
-        World w(WorldSettings{});
-        const int m = w.addMaterial(ice(1e9));
-        const int box = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(1, 1, 0.5)), 0.05));
-        const int t = w.addShape(DilatedShape(ConvexPolyhedron::hull(tet), 0.05));
-        const int first = vertexOnA ? t : box;
-        const int second = vertexOnA ? box : t;
-        w.addBody(first, m, Vec3::Zero());
-        w.addBody(second, m, Vec3::Zero());
-        // B's pose moved by a translation dx and a rotation dphi about p
-        auto find = [&](const Vec3& dx, const Vec3& dphi, const Vec3& p, FoundContact& out)
-        {
-            std::vector<Vec3> va, vb;
-            auto view = [&](const Body& b, int s, const Mat3& turn, const Vec3& move, std::vector<Vec3>& v)
-            {
-                const Vec3 x = p + turn*(b.x - p) + move;
-                const Mat3 R = turn*b.rotation();
-                v.clear();
-                for (const Vec3& q : w.shapes()[s].core().vertices()) v.push_back(R*q + x);
-                return BodyView{&w.shapes()[s], v.data(), R, x, Quat(R)};
-            };
-            const Mat3 I = Mat3::Identity();
-            const double angle = dphi.norm();
-            const Mat3 turn = angle > 0 ? Mat3(Eigen::AngleAxisd(angle, dphi/angle)) : I;
-            const BodyView A = view(w.bodies()[0], first, I, Vec3::Zero(), va);
-            const BodyView B = view(w.bodies()[1], second, turn, dx, vb);
-            FoundContact found[16];
-            Vec3 axis = Vec3::Zero();
-            const int n = findContacts(A, B, NarrowPhaseSettings{}, axis, found, 16);
-            // The weighted vertex-edge contact
-            for (int k = 0; k < n; ++k)
-            {
-                if (found[k].g.type == FeaturePair::vertexEdge && found[k].g.weight < 1)
-                {
-                    out = found[k];
-                    return true;
-                }
-            }
-            return false;
-        };
-        FoundContact c;
-        ASSERT_TRUE(find(Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), c)) << vertexOnA;
-        EXPECT_GT(c.g.weight, 0.1);
-        EXPECT_LT(c.g.weight, 0.9);
-        const double h = 1e-6;
-        Vec3 gx, gphi;
-        for (int k = 0; k < 3; ++k)
-        {
-            FoundContact plus, minus;
-            const Vec3 e = h*Vec3::Unit(k);
-            ASSERT_TRUE(find(e, Vec3::Zero(), c.g.point, plus));
-            ASSERT_TRUE(find(-e, Vec3::Zero(), c.g.point, minus));
-            gx(k) = (plus.g.weight - minus.g.weight)/(2*h);
-            ASSERT_TRUE(find(Vec3::Zero(), e, c.g.point, plus));
-            ASSERT_TRUE(find(Vec3::Zero(), -e, c.g.point, minus));
-            gphi(k) = (plus.g.weight - minus.g.weight)/(2*h);
-        }
-        std::printf
-        (
-            "vertex on %s: w %.4f, dw/dx_B (%.5g %.5g %.5g) vs (%.5g %.5g %.5g),"
-            " dw/dphi_B (%.5g %.5g %.5g) vs (%.5g %.5g %.5g)\n",
-            vertexOnA ? "A" : "B", c.g.weight,
-            c.g.weightGradientX.x(), c.g.weightGradientX.y(), c.g.weightGradientX.z(),
-            gx.x(), gx.y(), gx.z(),
-            c.g.weightGradient.x(), c.g.weightGradient.y(), c.g.weightGradient.z(),
-            gphi.x(), gphi.y(), gphi.z()
-        );
-        EXPECT_GT(gx.norm(), 1);   // the translational part is there
-        EXPECT_LT((c.g.weightGradientX - gx).norm(), 1e-5*gx.norm());
-        EXPECT_LT((c.g.weightGradient - gphi).norm(), 1e-5*(gphi.norm() + gx.norm()));
-    }
+
+//- The terms of the excess potential between hull A (fixed) and hull B at
+//  B's pose (xB, qB), each with its law's potential w U, force on B and
+//  moment about B's centroid (ContactLaw::evaluate at rest: no damping, no
+//  tangential spring)
+struct TermSum
+{
+    double U = 0;
+    Vec3 F = Vec3::Zero();
+    Vec3 M = Vec3::Zero();
+};
+
+//- The kind of a term from its keys and weight (NarrowPhase.H): 0 vertex
+//  of A on B, 1 vertex of B on A, 2 vertex-vertex (subtracted), 3
+//  edge-edge excess
+int termKind(const FoundContact& c)
+{
+    const std::uint32_t kindA = c.featureA >> 30, kindB = c.featureB >> 30;
+    if (kindA == kVertex && kindB == kFace) return 0;
+    if (kindA == kFace && kindB == kVertex) return 1;
+    if (kindA == kVertex && kindB == kVertex) return 2;
+    return 3;
 }
 
-
-// The weights of weighted contacts (tolerance bands and the merge
-// partition) must have the gradients the narrow phase gives them (the
-// forces are minus the potential's gradient only then). Random hull pairs
-// at a held overlap, central differences for B moved and turned about the
-// contact's point, every contact of weight below 1 found at all twelve
-// perturbed poses
-TEST(handover, weightGradientsMatchFiniteDifferences)
+struct TermEvaluation
 {
-    int checked = 0, shared = 0;
-    double worst = 0;
-    for (unsigned seed = 201; seed <= 230; ++seed)
+    TermSum kind[4];
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> keys;
+};
+
+TermEvaluation evaluateTerms
+(
+    const DilatedShape& SA,
+    const DilatedShape& SB,
+    const Vec3& xB,
+    const Quat& qB,
+    const ContactLaw& law,
+    const PairCoefficients& coeffs
+)
+{
+    std::vector<Vec3> va(SA.core().vertices().begin(), SA.core().vertices().end());
+    std::vector<Vec3> vb;
+    const Mat3 RB = qB.toRotationMatrix();
+    for (const Vec3& p : SB.core().vertices()) vb.push_back(RB*p + xB);
+    const BodyView A{&SA, va.data(), Mat3::Identity(), Vec3::Zero(), Quat::Identity()};
+    const BodyView B{&SB, vb.data(), RB, xB, qB};
+    FoundContact found[World::maxContactsPerPair];
+    Vec3 axis = Vec3::Zero();
+    const int n = findContacts(A, B, NarrowPhaseSettings(), axis, found, World::maxContactsPerPair);
+    TermEvaluation r;
+    for (int k = 0; k < n; ++k)
     {
-        // Shallow and deep: the deep poses have patches of several corners
-        const double overlap = seed % 2 ? 5e-3 : 2e-2;
-        std::mt19937_64 rng(seed);
-        std::unique_ptr<DilatedShape> pa, pb;
-        try
+        Vec3 xi = Vec3::Zero();
+        const ContactResult c = law.evaluate(coeffs, found[k].g, 1.0, Vec3::Zero(), xi, 0.0);
+        TermSum& t = r.kind[termKind(found[k])];
+        t.U += c.elasticEnergy;
+        t.F += c.forceOnJ;
+        t.M += (found[k].g.point - xB).cross(c.forceOnJ) + c.coupleOnJ;
+        r.keys.emplace_back(found[k].featureA, found[k].featureB);
+    }
+    std::sort(r.keys.begin(), r.keys.end());
+    return r;
+}
+
+} // anonymous namespace
+
+
+// Every term of the excess potential (NarrowPhase.H) is a normal force
+// along its closest-point direction, the edge-edge excess with the
+// gradient of its weight: the force on B and its moment about B's centroid
+// must be minus the gradient of the term's potential. Random hull pairs
+// (7 and 10 vertices, r = 0.05) at random relative poses, B moved along a
+// random direction until its deepest term overlaps by 3e-3 to 1.5e-2;
+// central differences (h = 1e-6 m, 1e-6 rad; error O(h^2)) of each kind's
+// potential (vertex of A on B, vertex of B on A, the subtracted
+// vertex-vertex terms, the edge-edge excess) against its force and moment,
+// for both laws (hertz: the edge-edge moment excepted, see below), at
+// every pose where no term appears or ends within h. Each kind must be
+// checked at 20 poses at least
+TEST(handover, excessTermsForcesAreTheGradientOfTheirPotential)
+{
+    const PairCoefficients coeffs = PairCoefficients::make(ice(1e9), ice(1e9), PairProperties{0.0, 1.0});
+    int checked[4] = {0, 0, 0, 0};
+    double worst[4] = {0, 0, 0, 0};
+    for (const std::string model : {"hertzSimplified", "hertz"})
+    {
+        ContactLawSettings ls;
+        ls.model = model;
+        const auto law = ContactLaw::New(ls);
+        for (unsigned seed = 1; seed <= 60; ++seed)
         {
-            pa = std::make_unique<DilatedShape>(randomHull(rng, 7, 0.5), 0.05);
-            pb = std::make_unique<DilatedShape>(randomHull(rng, 10, 0.6), 0.05);
-        }
-        catch (const Error&)
-        {
-            continue;   // a hull with a vertex on another's face
-        }
-        const DilatedShape& SA = *pa;
-        const DilatedShape& SB = *pb;
-        std::uniform_real_distribution<double> u(-1, 1);
-        for (int pose = 0; pose < 60; ++pose)
-        {
-            const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
-            const Mat3 R0 = Quat(Eigen::AngleAxisd(3*u(rng), Vec3(u(rng), u(rng), u(rng)).normalized())).toRotationMatrix();
-            std::vector<Vec3> va, vb;
-            for (const Vec3& p : SA.core().vertices()) va.push_back(p);
-            const BodyView A{&SA, va.data(), Mat3::Identity(), Vec3::Zero(), Quat::Identity()};
-            auto find = [&](const Mat3& turn, const Vec3& about, const Vec3& x, FoundContact* out)
+            std::mt19937_64 rng(seed);
+            std::unique_ptr<DilatedShape> SA, SB;
+            try
             {
-                const Mat3 R = turn*R0;
-                const Vec3 c = about + turn*(x - about);
-                vb.clear();
-                for (const Vec3& p : SB.core().vertices()) vb.push_back(R*p + c);
-                const BodyView B{&SB, vb.data(), R, c, Quat(R)};
+                SA = std::make_unique<DilatedShape>(randomHull(rng, 7, 0.5), 0.05);
+                SB = std::make_unique<DilatedShape>(randomHull(rng, 10, 0.6), 0.05);
+            }
+            catch (const Error&)
+            {
+                continue;
+            }
+            std::uniform_real_distribution<double> u(-1, 1);
+            const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+            const Quat qB(Eigen::AngleAxisd(3*u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+            const double target = 3e-3 + 1.2e-2*0.5*(1 + u(rng));
+            // Odd seeds: vertex on vertex (B's extreme vertex along -dir on
+            // the line through A's extreme vertex along dir, so that the
+            // closest points are the two vertices and the vertex-vertex
+            // term is present); even seeds: B moved along dir from A's
+            // centroid
+            Vec3 origin = Vec3::Zero();
+            if (seed % 2)
+            {
+                auto extreme = [](const DilatedShape& S, const Mat3& R, const Vec3& d)
+                {
+                    Vec3 best = R*S.core().vertices()[0];
+                    for (const Vec3& p : S.core().vertices())
+                    {
+                        if ((R*p).dot(d) > best.dot(d)) best = R*p;
+                    }
+                    return best;
+                };
+                origin = extreme(*SA, Mat3::Identity(), dir) - extreme(*SB, qB.toRotationMatrix(), -dir);
+            }
+            // Bisection on the distance for the deepest term's overlap
+            auto deepest = [&](double d)
+            {
+                std::vector<Vec3> va(SA->core().vertices().begin(), SA->core().vertices().end());
+                std::vector<Vec3> vb;
+                const Mat3 RB = qB.toRotationMatrix();
+                const Vec3 x = origin + d*dir;
+                for (const Vec3& p : SB->core().vertices()) vb.push_back(RB*p + x);
+                const BodyView A{SA.get(), va.data(), Mat3::Identity(), Vec3::Zero(), Quat::Identity()};
+                const BodyView B{SB.get(), vb.data(), RB, x, qB};
+                if (coresIntersect(A, B)) return std::numeric_limits<double>::infinity();
+                FoundContact found[World::maxContactsPerPair];
                 Vec3 axis = Vec3::Zero();
-                return findContacts(A, B, NarrowPhaseSettings{}, axis, out, 16);
+                const int n = findContacts(A, B, NarrowPhaseSettings(), axis, found, World::maxContactsPerPair);
+                double o = 0;
+                for (int k = 0; k < n; ++k) o = std::max(o, found[k].g.overlap);
+                return o;
             };
-            FoundContact found[16];
-            // Bisection on the distance along dir to a deepest overlap of 5e-3
-            double lo = 0, hi = 3;
+            double lo = seed % 2 ? -0.5 : 0, hi = seed % 2 ? 0.5 : 4;
             for (int it = 0; it < 50; ++it)
             {
                 const double mid = 0.5*(lo + hi);
-                const int n = find(Mat3::Identity(), Vec3::Zero(), mid*dir, found);
-                double deepest = 0;
-                for (int k = 0; k < n; ++k) deepest = std::max(deepest, found[k].g.overlap);
-                (deepest > overlap || (n == 0 && mid < 0.3) ? lo : hi) = mid;
+                (deepest(mid) > target ? lo : hi) = mid;
             }
-            const Vec3 x = hi*dir;
-            const int n = find(Mat3::Identity(), Vec3::Zero(), x, found);
-            for (int k = 0; k < n; ++k)
+            const Vec3 xB = origin + hi*dir;
+            const TermEvaluation at = evaluateTerms(*SA, *SB, xB, qB, *law, coeffs);
+            const double h = 1e-6;
+            Vec3 gradX[4], gradPhi[4];
+            bool stable = true;
+            for (int c = 0; c < 3 && stable; ++c)
             {
-                const FoundContact c = found[k];
-                if (!(c.g.weight < 1 - 1e-12)) continue;
-                const double h = 1e-7;
-                Vec3 gx, gphi;
-                bool ok = true;
-                auto weightAt = [&](const Mat3& turn, const Vec3& dx)
+                const Vec3 e = Vec3::Unit(c);
+                const TermEvaluation px = evaluateTerms(*SA, *SB, xB + h*e, qB, *law, coeffs);
+                const TermEvaluation mx = evaluateTerms(*SA, *SB, xB - h*e, qB, *law, coeffs);
+                const Quat turnP(Eigen::AngleAxisd(h, e)), turnM(Eigen::AngleAxisd(-h, e));
+                const TermEvaluation pp = evaluateTerms(*SA, *SB, xB, turnP*qB, *law, coeffs);
+                const TermEvaluation mp = evaluateTerms(*SA, *SB, xB, turnM*qB, *law, coeffs);
+                stable = px.keys == at.keys && mx.keys == at.keys && pp.keys == at.keys && mp.keys == at.keys;
+                for (int k = 0; k < 4; ++k)
                 {
-                    FoundContact other[16];
-                    const int m = find(turn, c.g.point, x + dx, other);
-                    for (int j = 0; j < m; ++j)
-                    {
-                        if (other[j].featureA == c.featureA && other[j].featureB == c.featureB)
-                        {
-                            return other[j].g.weight;
-                        }
-                    }
-                    ok = false;
-                    return 0.0;
-                };
-                for (int d = 0; d < 3; ++d)
-                {
-                    const Vec3 e = h*Vec3::Unit(d);
-                    gx(d) = (weightAt(Mat3::Identity(), e) - weightAt(Mat3::Identity(), -e))/(2*h);
-                    const Mat3 tp(Eigen::AngleAxisd(h, Vec3::Unit(d)));
-                    const Mat3 tm(Eigen::AngleAxisd(-h, Vec3::Unit(d)));
-                    gphi(d) = (weightAt(tp, Vec3::Zero()) - weightAt(tm, Vec3::Zero()))/(2*h);
+                    gradX[k](c) = (px.kind[k].U - mx.kind[k].U)/(2*h);
+                    gradPhi[k](c) = (pp.kind[k].U - mp.kind[k].U)/(2*h);
                 }
-                if (!ok) continue;
-                ++checked;
-                // Sharing its weight: another contact within L = r_A + r_B
-                // (equal radii: the midpoints are the contacts' points)
-                for (int j = 0; j < n; ++j)
-                {
-                    if (j != k && (found[j].g.point - c.g.point).norm() < 0.1)
-                    {
-                        ++shared;
-                        break;
-                    }
-                }
-                const double scale = 1 + gx.norm()*0.05 + gphi.norm();
-                const double err =
-                    std::max((c.g.weightGradientX - gx).norm()*0.05, (c.g.weightGradient - gphi).norm())/scale;
-                if (err > 1e-4)
-                {
-                    std::printf
-                    (
-                        "seed %u pose %d: %s w %.6f: dw/dx (%.5g %.5g %.5g) vs (%.5g %.5g %.5g),"
-                        " dw/dphi (%.5g %.5g %.5g) vs (%.5g %.5g %.5g)\n",
-                        seed, pose, featurePairName(c.g.type), c.g.weight,
-                        c.g.weightGradientX.x(), c.g.weightGradientX.y(), c.g.weightGradientX.z(),
-                        gx.x(), gx.y(), gx.z(),
-                        c.g.weightGradient.x(), c.g.weightGradient.y(), c.g.weightGradient.z(),
-                        gphi.x(), gphi.y(), gphi.z()
-                    );
-                }
-                worst = std::max(worst, err);
+            }
+            if (!stable) continue;
+            // Scale: the pair's total force
+            Vec3 Ftot = Vec3::Zero();
+            for (int k = 0; k < 4; ++k) Ftot += at.kind[k].F;
+            const double scale = Ftot.norm() + 1e-300;
+            for (int k = 0; k < 4; ++k)
+            {
+                if (at.kind[k].U == 0) continue;
+                const double errF = (at.kind[k].F + gradX[k]).norm()/scale;
+                const double errM = (at.kind[k].M + gradPhi[k]).norm()/(scale*SB->boundingRadius());
+                worst[k] = std::max(worst[k], k == 3 && model == "hertz" ? errF : std::max(errF, errM));
+                ++checked[k];
+                EXPECT_LT(errF, 1e-4) << model << " seed " << seed << " kind " << k;
+                // hertz: the edge-edge radius r/sin(theta) makes the term's
+                // potential depend on the edges' angle, a moment the law
+                // does not apply (as on main); its force is checked
+                if (k == 3 && model == "hertz") continue;
+                EXPECT_LT(errM, 1e-4) << model << " seed " << seed << " kind " << k;
             }
         }
     }
     std::printf
     (
-        "%d weighted contacts checked (%d sharing their weight), worst relative error %.3g\n",
-        checked, shared, worst
+        "poses checked (vertex of A, of B, vertex-vertex, edge-edge): %d %d %d %d;"
+        " largest error of F, M over |F_total|: %.2g %.2g %.2g %.2g\n",
+        checked[0], checked[1], checked[2], checked[3], worst[0], worst[1], worst[2], worst[3]
     );
-    EXPECT_GE(checked, 20);
-    EXPECT_GE(shared, 10);
-    EXPECT_LT(worst, 1e-4);
-}
-
-
-// The merge partition's shares (narrowPhaseMerge.H) on two contacts at one
-// point with one overlap, weights 1 and 1/2: each has the union's weight
-// e = 1 - (1 - 1)(1 - 1/2) = 1, shared in proportion to w^p (p =
-// mergeSharePower): W = (1, 2^-p)/(1 + 2^-p), summing to the union; and a
-// power outside [1, 16] is an error naming the entry
-TEST(handover, mergeSharesFollowTheSharePower)
-{
-    for (double p : {1.0, 4.0})
-    {
-        FoundContact c[2];
-        for (int k = 0; k < 2; ++k)
-        {
-            c[k].g.type = FeaturePair::vertexFace;
-            c[k].g.normal = Vec3::UnitZ();
-            c[k].g.point = Vec3::Zero();
-            c[k].g.overlap = 1e-3;
-            c[k].g.weight = k == 0 ? 1.0 : 0.5;
-            c[k].g.weightGradient.setZero();
-            c[k].g.weightGradientX.setZero();
-            c[k].midGradX.setZero();
-            c[k].midGradPhi.setZero();
-        }
-        narrowPhase::partitionMerges(c, 2, 0.05, 0.05, p);
-        const double s = std::pow(0.5, p);
-        EXPECT_NEAR(c[0].g.weight, 1/(1 + s), 1e-15) << "p " << p;
-        EXPECT_NEAR(c[1].g.weight, s/(1 + s), 1e-15) << "p " << p;
-        EXPECT_NEAR(c[0].g.weight + c[1].g.weight, 1, 1e-15) << "p " << p;
-    }
-    for (double p : {0.5, 17.0})
-    {
-        WorldSettings s;
-        s.mergeSharePower = p;
-        try
-        {
-            World w(s);
-            ADD_FAILURE() << "mergeSharePower " << p << " accepted";
-        }
-        catch (const Error& e)
-        {
-            EXPECT_EQ(e.entry(), "mergeSharePower");
-        }
-    }
+    for (int k = 0; k < 4; ++k) EXPECT_GE(checked[k], 20) << "kind " << k;
 }

@@ -34,14 +34,6 @@ World::World(const WorldSettings& settings)
     {
         throw Error("the DEM time step must be > 0", "deltaT");
     }
-    if (!(settings_.parallelEdgeSin > 0 && settings_.parallelEdgeSin < 1))
-    {
-        throw Error("parallelEdgeSin must be in (0, 1)", "parallelEdgeSin");
-    }
-    if (!(settings_.mergeSharePower >= 1 && settings_.mergeSharePower <= 16))
-    {
-        throw Error("mergeSharePower must be in [1, 16]", "mergeSharePower");
-    }
     if (!(settings_.contactCheckVelocity > 0))
     {
         throw Error("contactCheckVelocity must be > 0", "contactCheckVelocity");

@@ -121,8 +121,6 @@ int World::findPairContacts
     Vec3 translated[maxShapeVertices];
     const BodyView B = viewOfJ(p, translated);
     NarrowPhaseSettings nps;
-    nps.parallelEdgeSin = settings_.parallelEdgeSin;
-    nps.mergeSharePower = settings_.mergeSharePower;
     nps.featureSkin = featureSkin_;
     return findContacts(A, B, nps, axis, found, maxContactsPerPair, features, separation);
 }

@@ -147,11 +147,19 @@ ContactResult ContactLaw::evaluate
     const double Sn = 2*c.Estar*sqrtRd;                 // dF/ddelta
     const double elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
     const double damping = 2*std::sqrt(5.0/6.0)*c.beta*std::sqrt(mEff*Sn);
-    // A weighted contact (w < 1) has the potential w U(delta): every part
-    // of its force scales with w, and the weight's own gradient gives a
-    // couple (w depends on the relative orientation only)
+    // A term of the excess potential (NarrowPhase.H) carries a sign w = +1
+    // or -1 (a subtracted term): its potential is w U(delta), and its
+    // normal force, damping included, and its tangential spring are those
+    // of a positive term times w (so that a subtracted term cancels the
+    // positive term it duplicates, history and all, while the two
+    // coincide); the friction cap applies to each term's own magnitude.
+    // The weight's gradient (zero for every term of the excess potential)
+    // would give a couple
     const double w = g.weight;
-    const double Fn = w*std::max(0.0, elastic - damping*vn);
+    const double sign = w < 0 ? -1.0 : 1.0;
+    const double wAbs = std::abs(w);
+    const double FnAbs = wAbs*std::max(0.0, elastic - damping*vn);
+    const double Fn = sign*FnAbs;
 
     // Tangential spring: rotate into the current tangent plane, keep length
     const double xiLen = xi.norm();
@@ -164,9 +172,9 @@ ContactResult ContactLaw::evaluate
     const Vec3 vt = vRel - vn*n;
     xi += vt*dt;
 
-    const double kt = w*(mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn);
+    const double kt = wAbs*(mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn);
     Vec3 Ft = -kt*xi;
-    const double FtMax = c.friction*Fn;
+    const double FtMax = c.friction*FnAbs;
     const double FtLen = Ft.norm();
     if (FtLen > FtMax)
     {
@@ -181,9 +189,9 @@ ContactResult ContactLaw::evaluate
     ContactResult r;
     // Force on j: pushed along +n
     const double U = 0.4*elastic*delta;
-    r.forceOnJ = Fn*n + Ft - U*g.weightGradientX;
+    r.forceOnJ = Fn*n + sign*Ft - U*g.weightGradientX;
     r.normalForce = Fn;
-    r.elasticEnergy = w*U + (kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
+    r.elasticEnergy = w*U + sign*(kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
     r.coupleOnJ = -U*g.weightGradient;
     return r;
 }

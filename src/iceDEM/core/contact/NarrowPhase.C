@@ -4,8 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "NarrowPhase.H"
-#include "pairSearch.H"
-#include "narrowPhaseMerge.H"
+#include "excessPotential.H"
 
 #include <algorithm>
 #include <limits>
@@ -14,77 +13,6 @@ namespace iceDEM
 {
 
 using namespace narrowPhase;
-
-namespace
-{
-
-//- 3a (vertexOnA) or 3b: the candidate vertices of one element on the
-//  candidate faces of the other, listed and evaluated
-template<bool vertexOnA>
-void vertexFaceLoop
-(
-    PairSearch& search,
-    ListBuilder& builder,
-    const int* candV,
-    int nCandV,
-    const bool* isCandFaceF,
-    int nFF
-)
-{
-    for (int ci = 0; ci < nCandV; ++ci)
-    {
-        const int i = candV[ci];
-        const Vec3 p = vertexOnA ? search.vertexAInB(i) : search.vertexBInA(i);
-        for (int f = 0; f < nFF; ++f)
-        {
-            if (!isCandFaceF[f]) continue;
-            if (vertexOnA)
-            {
-                builder.visit(vertexFaceAB, i, f, p);
-                search.vertexFace(i, f, p);
-            }
-            else
-            {
-                builder.visit(faceVertexAB, f, i, p);
-                search.faceVertex(f, i, p);
-            }
-        }
-    }
-}
-
-//- 3d (vertexOnA) or 3e: the candidate vertices of one element on the
-//  candidate edges of the other
-template<bool vertexOnA, class IsCandEdge>
-void vertexEdgeLoop
-(
-    PairSearch& search,
-    ListBuilder& builder,
-    const int* candV,
-    int nCandV,
-    const IsCandEdge& isCandEdgeF,
-    int nEF
-)
-{
-    for (int ci = 0; ci < nCandV; ++ci)
-    {
-        for (int e = 0; e < nEF; ++e)
-        {
-            if (!isCandEdgeF(e)) continue;
-            if (vertexOnA)
-            {
-                builder.visit(vertexEdgeAB, candV[ci], e);
-                search.vertexEdge(candV[ci], e);
-            }
-            else
-            {
-                builder.visit(edgeVertexAB, e, candV[ci]);
-                search.edgeVertex(e, candV[ci]);
-            }
-        }
-    }
-}
-
-} // anonymous namespace
 
 
 int findContacts
@@ -109,38 +37,6 @@ int findContacts
     const Vec3* wA = A.vertices;
     const Vec3* wB = B.vertices;
 
-    // The feature-pair list holds while the cores have moved less than
-    // featureSkin relative to each other since it was built (a bound that
-    // depends on the present relative pose only, not on the path, nor on
-    // the pair's common motion: NarrowPhase.H); evaluated when
-    // the first axis does not separate the cores
-    // The motion bound in both frames: the smaller decides (the list holds
-    // while it is below featureSkin - eta, and skips an entry while it is
-    // below the entry's certificate), the larger is charged to the
-    // certificates renewed by the walk
-    if (!(s.featureSkin > 0)) list = nullptr;
-    int listHolds = -1;
-    double motion = 0, motionMax = 0;
-    auto useList = [&]()
-    {
-        if (listHolds < 0)
-        {
-            listHolds = 0;
-            if (list && list->count >= 0)
-            {
-                const RelativePose now = relativePose(A, B);
-                const double eta = listTolerance*(SA.boundingRadius() + SB.boundingRadius());
-                const double chord = relativeChord(list->Q, now.Q);
-                const double mB = motionOfBInA(list->t, now.t, chord, SB.boundingRadius());
-                const double mA = motionOfAInB(list->t, list->Q, now.t, now.Q, chord, SA.boundingRadius());
-                motion = std::min(mB, mA);
-                motionMax = std::max(mB, mA);
-                listHolds = motion < s.featureSkin - eta;
-            }
-        }
-        return listHolds == 1;
-    };
-
     // 1. Separating axes: the hint, then the line of centres (not while the
     //    list holds: the listed pairs give the contacts of a full search
     //    whatever the axes say, which only save work, and the hint, the
@@ -162,19 +58,11 @@ int findContacts
         axes[nAxes++] = Vec3::UnitX();
     }
 
-    // A pair with a list is likely to walk it: its shapes' data first
-    if (list && list->count > 0)
-    {
-        prefetchShape(SB);
-        prefetchShape(SA);
-    }
-
     double bestGap = -std::numeric_limits<double>::max();
     Vec3 best = axes[0];
     double bestMaxA = 0, bestMinB = 0;
     for (int k = 0; k < nAxes; ++k)
     {
-        if ((k > 0 || (list && list->touched)) && useList()) break;
         const Vec3& a = axes[k];
         double maxA = -std::numeric_limits<double>::max();
         double minB = std::numeric_limits<double>::max();
@@ -187,7 +75,7 @@ int findContacts
             if (separation)
             {
                 *separation =
-                    gap - rs - listTolerance*(SA.boundingRadius() + SB.boundingRadius());
+                    gap - rs - separationTolerance*(SA.boundingRadius() + SB.boundingRadius());
             }
             return 0;
         }
@@ -200,103 +88,66 @@ int findContacts
         }
     }
 
-    PairSearch search(A, B, s, out, maxOut);
-    Collector& col = search.col;
+    // No feature-pair list: the excess potential's terms are found by one
+    // search over the slab's candidates on every call
+    if (list) list->count = -1;
+    TermCollector col(out, maxOut, SA.radius(), SB.radius());
 
-    if (useList())
+    // 2. Features inside the slab of the best axis (exact culling: a point
+    //    farther than r_A + r_B from the other core's slab cannot touch it;
+    //    a point of Q within r_A + r_B of a vertex of P lies in Q's slab, so
+    //    the face or edge that holds it has a vertex there, and the
+    //    distance of a vertex to the candidate faces and edges is its
+    //    distance to the whole core whenever it is below r_A + r_B)
+    int candA[maxShapeVertices], candB[maxShapeVertices];
+    bool isCandA[maxShapeVertices], isCandB[maxShapeVertices];
+    int nCandA = 0, nCandB = 0;
+    const double loA = bestMinB - rs;
+    const double hiB = bestMaxA + rs;
+    for (int i = 0; i < nA; ++i)
     {
-        // 2-3. The listed feature pairs, in the full search's order, those
-        //     certified apart skipped; their lapsed certificates renewed
-        //     into the caller's buffer (if any)
-        if (search.evaluateList(list->entries, list->count, list->buffer, motion, motionMax))
-        {
-            list->entries = list->buffer;
-        }
+        isCandA[i] = best.dot(wA[i]) >= loA;
+        if (isCandA[i]) candA[nCandA++] = i;
     }
-    else
+    for (int j = 0; j < nB; ++j)
     {
-        // A new list, if any: the feature pairs closer than listReach
-        const double listReach = rs + (list ? s.featureSkin : 0);
-        if (list)
-        {
-            const RelativePose now = relativePose(A, B);
-            list->t = now.t;
-            list->Q = now.Q;
-        }
-        ListBuilder builder(search, list, listReach, s.featureSkin);
-
-        // 2. Features inside the slab of the best axis (exact culling: a
-        //    point farther than listReach from the other core's slab cannot
-        //    touch it, nor be listed)
-        int candA[maxShapeVertices], candB[maxShapeVertices];
-        bool isCandA[maxShapeVertices], isCandB[maxShapeVertices];
-        int nCandA = 0, nCandB = 0;
-        const double loA = bestMinB - listReach;
-        const double hiB = bestMaxA + listReach;
-        for (int i = 0; i < nA; ++i)
-        {
-            isCandA[i] = best.dot(wA[i]) >= loA;
-            if (isCandA[i]) candA[nCandA++] = i;
-        }
-        for (int j = 0; j < nB; ++j)
-        {
-            isCandB[j] = best.dot(wB[j]) <= hiB;
-            if (isCandB[j]) candB[nCandB++] = j;
-        }
-
-        // Candidate faces and edges: at least one vertex in the slab
-        auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
-        {
-            for (int k = 0; k < P.faces()[f].count; ++k)
-            {
-                if (isCand[P.faceVertex(f, k)]) return true;
-            }
-            return false;
-        };
-        const auto& EA = PA.edges();
-        const auto& EB = PB.edges();
-        auto edgeA = [&](int a) { return isCandA[EA[a][0]] || isCandA[EA[a][1]]; };
-        auto edgeB = [&](int b) { return isCandB[EB[b][0]] || isCandB[EB[b][1]]; };
-        const int nFA = static_cast<int>(PA.faces().size());
-        const int nFB = static_cast<int>(PB.faces().size());
-        bool isCandFaceA[2*maxShapeVertices], isCandFaceB[2*maxShapeVertices];
-        for (int f = 0; f < nFA; ++f) isCandFaceA[f] = faceHasCandidate(PA, f, isCandA);
-        for (int f = 0; f < nFB; ++f) isCandFaceB[f] = faceHasCandidate(PB, f, isCandB);
-
-        // 3a. Vertex of A on a face of B, 3b. vertex of B on a face of A
-        vertexFaceLoop<true>(search, builder, candA, nCandA, isCandFaceB, nFB);
-        vertexFaceLoop<false>(search, builder, candB, nCandB, isCandFaceA, nFA);
-
-        // 3c. Edge-edge
-        for (int a = 0; a < int(EA.size()); ++a)
-        {
-            if (!edgeA(a)) continue;
-            for (int b = 0; b < int(EB.size()); ++b)
-            {
-                if (!edgeB(b)) continue;
-                builder.visit(edgeEdgeAB, a, b);
-                search.edgeEdge(a, b);
-            }
-        }
-
-        // 3d. Vertex of A on an edge of B, 3e. vertex of B on an edge of A
-        vertexEdgeLoop<true>(search, builder, candA, nCandA, edgeB, int(EB.size()));
-        vertexEdgeLoop<false>(search, builder, candB, nCandB, edgeA, int(EA.size()));
-
-        // 3f. Vertex-vertex
-        for (int ci = 0; ci < nCandA; ++ci)
-        {
-            for (int cj = 0; cj < nCandB; ++cj)
-            {
-                builder.visit(vertexVertexAB, candA[ci], candB[cj]);
-                search.vertexVertex(candA[ci], candB[cj]);
-            }
-        }
+        isCandB[j] = best.dot(wB[j]) <= hiB;
+        if (isCandB[j]) candB[nCandB++] = j;
     }
 
-    // Corners of a patch near each other share their weight (the merge
-    // partition, narrowPhaseMerge.H)
-    partitionMerges(out, col.n, SA.radius(), SB.radius(), s.mergeSharePower);
+    // Candidate faces and edges: at least one vertex in the slab
+    auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
+    {
+        for (int k = 0; k < P.faces()[f].count; ++k)
+        {
+            if (isCand[P.faceVertex(f, k)]) return true;
+        }
+        return false;
+    };
+    const auto& EA = PA.edges();
+    const auto& EB = PB.edges();
+    const int nFA = static_cast<int>(PA.faces().size());
+    const int nFB = static_cast<int>(PB.faces().size());
+    bool isCandFaceA[2*maxShapeVertices], isCandFaceB[2*maxShapeVertices];
+    bool isCandEdgeA[3*maxShapeVertices], isCandEdgeB[3*maxShapeVertices];
+    for (int f = 0; f < nFA; ++f) isCandFaceA[f] = faceHasCandidate(PA, f, isCandA);
+    for (int f = 0; f < nFB; ++f) isCandFaceB[f] = faceHasCandidate(PB, f, isCandB);
+    for (int e = 0; e < int(EA.size()); ++e) isCandEdgeA[e] = isCandA[EA[e][0]] || isCandA[EA[e][1]];
+    for (int e = 0; e < int(EB.size()); ++e) isCandEdgeB[e] = isCandB[EB[e][0]] || isCandB[EB[e][1]];
+
+    // 3. The terms (NarrowPhase.H): vertices of A against B's core and of B
+    //    against A's (one function, the roles swapped), less the
+    //    vertex-vertex doubles, plus the edge-edge excess
+    VertexClosest infoA[maxShapeVertices], infoB[maxShapeVertices];
+    vertexTerms<true>(col, A, B, candA, nCandA, isCandFaceB, isCandEdgeB, infoA);
+    vertexTerms<false>(col, B, A, candB, nCandB, isCandFaceA, isCandEdgeA, infoB);
+    vertexVertexTerms(col, A, B, candA, nCandA, candB, nCandB, infoA, infoB);
+    edgeEdgeTerms
+    (
+        col, A, B,
+        [&](int e) { return isCandEdgeA[e]; },
+        [&](int e) { return isCandEdgeB[e]; }
+    );
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
@@ -305,7 +156,7 @@ int findContacts
         int deepest = 0;
         for (int k = 1; k < col.n; ++k)
         {
-            if (out[k].g.overlap > out[deepest].g.overlap) deepest = k;
+            if (out[k].g.weight > 0 && out[k].g.overlap > out[deepest].g.overlap) deepest = k;
         }
         axis = out[deepest].g.normal;
     }

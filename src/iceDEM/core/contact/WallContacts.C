@@ -4,7 +4,6 @@
 \*---------------------------------------------------------------------------*/
 
 #include "NarrowPhase.H"
-#include "featurePairLists.H"
 
 #include <algorithm>
 #include <limits>
@@ -12,7 +11,6 @@
 namespace iceDEM
 {
 
-using namespace narrowPhase;
 
 int findWallContacts
 (
@@ -55,7 +53,7 @@ int findWallContacts
     }
     if (separation && n == 0)
     {
-        *separation = minDist - r - listTolerance*S.boundingRadius();
+        *separation = minDist - r - separationTolerance*S.boundingRadius();
     }
     return n;
 }

@@ -62,8 +62,6 @@ using namespace Foam::iceDEMChecks;
     s.contact.maxEdgeRadiusRatio =
         inRange(d, "maxEdgeRadiusRatio", 1, 1e6, 10);
 
-    s.parallelEdgeSin = inRange(d, "parallelEdgeSin", 0, 0.5, iceDEM::WorldSettings().parallelEdgeSin);
-    s.mergeSharePower = inRange(d, "mergeSharePower", 1, 16, iceDEM::WorldSettings().mergeSharePower);
     s.contactCheckVelocity = positive(d, "contactCheckVelocity", 1);
     s.contactStepsWarn = positive(d, "contactStepsWarn", 10);
     s.contactStepsMin = nonNegative(d, "contactStepsMin", 3);

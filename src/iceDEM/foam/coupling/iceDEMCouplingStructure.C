@@ -326,8 +326,6 @@ void Foam::iceDEMCoupling::removeFloesInStructure()
     }
 
     ::iceDEM::NarrowPhaseSettings nps;
-    nps.parallelEdgeSin = w.settings().parallelEdgeSin;
-    nps.mergeSharePower = w.settings().mergeSharePower;
 
     std::vector<bool> remove(N, false);
     DynamicList<word> removed;
