@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <iostream>
 #include <limits>
 #include <random>
 
@@ -148,4 +149,158 @@ TEST(featurePairLists, relativeMotionBoundHoldsForEveryCorePoint)
     }
     // Not vacuous: the bound is close to the real motion in most trials
     EXPECT_GT(tight, 1000);
+}
+
+
+namespace
+{
+
+//- Follows two floes through a random walk of small relative motions that
+//  keeps them touching (or nearly), and compares at every step the terms
+//  of findContacts with the pair's candidate list (skin) against those of
+//  the full search (no list), bit for bit; counts the steps that walked a
+//  kept list, and the terms of each type
+struct ListRun
+{
+    int steps = 0;
+    int reused = 0;
+    int touching = 0;
+    int types[5] = {0, 0, 0, 0, 0};
+};
+
+void walkPair
+(
+    const DilatedShape& SA,
+    const DilatedShape& SB,
+    bool upright,
+    double skin,
+    double stepSize,
+    std::uint64_t seed,
+    ListRun& run
+)
+{
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    auto randomVec = [&](double a) { return Vec3(a*u(rng), a*u(rng), a*u(rng)); };
+    auto randomQuat = [&]()
+    {
+        return upright
+          ? rotation(M_PI*u(rng), Vec3::UnitZ())
+          : Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    };
+
+    const Quat qA = randomQuat(), qB = randomQuat();
+    const Vec3 xA = randomVec(50);
+    Vec3 dir = upright ? Vec3(u(rng), u(rng), 0) : randomVec(1);
+    dir.normalize();
+    // From far away towards A until the full search finds a term
+    double dist = SA.boundingRadius() + SB.boundingRadius();
+    NarrowPhaseSettings none, lists;
+    lists.featureSkin = skin;
+    FoundContact full[maxOut], fromList[maxOut];
+    Vec3 axisFull = Vec3::Zero(), axisList = Vec3::Zero();
+    Placed A(SA, xA, qA);
+    Placed B(SB, xA + dist*dir, qB);
+    while (dist > 0)
+    {
+        B = Placed(SB, xA + dist*dir, qB);
+        Vec3 axis = Vec3::Zero();
+        if (findContacts(A.view(), B.view(), none, axis, full, maxOut) > 0) break;
+        dist -= 0.005;
+    }
+
+    FeaturePairEntry buffer[FeaturePairList::capacity];
+    FeaturePairList list;
+    list.buffer = buffer;
+    // A random walk of B (and sometimes A): steps of stepSize, drawn back
+    // towards contact when the pair drifts apart, pushed out when deep
+    Vec3 drift = Vec3::Zero();
+    for (int step = 0; step < 400; ++step)
+    {
+        const int before = list.count;
+        const Vec3 t0 = list.t;
+        const int nFull = findContacts(A.view(), B.view(), none, axisFull, full, maxOut);
+        const int nList = findContacts(A.view(), B.view(), lists, axisList, fromList, maxOut, &list);
+        expectSameContacts(full, nFull, fromList, nList);
+        ASSERT_FALSE(::testing::Test::HasFailure()) << "seed " << seed << " step " << step;
+        EXPECT_EQ(axisFull, axisList);
+        ++run.steps;
+        run.reused += before >= 0 && list.count == before && list.t == t0;
+        run.touching += nFull > 0;
+        for (int k = 0; k < nFull; ++k) ++run.types[int(full[k].g.type)];
+
+        double deepest = 0;
+        for (int k = 0; k < nFull; ++k) deepest = std::max(deepest, full[k].g.overlap);
+        const Vec3 toA = (A.x - B.x).normalized();
+        const double pull = nFull == 0 ? 1 : (deepest > 0.05 ? -1 : 0);
+        drift = 0.7*drift + randomVec(stepSize) + 0.5*stepSize*pull*toA;
+        const Quat turn = rotation(0.5*stepSize*u(rng), upright ? Vec3::UnitZ() : randomVec(1));
+        if (step % 5 == 0)
+        {
+            A = Placed(SA, A.x - 0.3*drift, turn.conjugate()*A.q);
+        }
+        B = Placed(SB, B.x + drift, turn*B.q);
+    }
+}
+
+} // anonymous namespace
+
+
+TEST(candidateLists, sameTermsAsTheFullSearchBitForBit)
+{
+    // The candidate lists of the excess potential (candidateLists.H) give
+    // the full search's terms, in its order, to the bit, at every step of
+    // random walks of touching floes (upright ones: faces, edges and
+    // vertices level with each other; tilted ones), with the default skin
+    // (r/2) and a larger one, small steps and large; not vacuous: most
+    // steps walk a kept list, but not all (the lists are rebuilt), most
+    // touch, and every type of term occurs
+    const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
+    ListRun run;
+    int seed = 0;
+    for (const bool upright : {true, false})
+    {
+        for (const double skin : {0.05, 0.15})
+        {
+            for (const double stepSize : {0.004, 0.02})
+            {
+                for (int k = 0; k < 10; ++k)
+                {
+                    walkPair(SA, SB, upright, skin, stepSize, 100 + seed++, run);
+                    if (::testing::Test::HasFailure()) return;
+                }
+            }
+        }
+    }
+    EXPECT_EQ(run.steps, 80*400);
+    EXPECT_GT(run.reused, run.steps/2);
+    EXPECT_GT(run.steps - run.reused, run.steps/20);
+    EXPECT_GT(run.touching, run.steps/2);
+    for (int t = 0; t < 4; ++t)
+    {
+        EXPECT_GT(run.types[t], 100) << featurePairName(FeaturePair(t));
+    }
+    std::cout << "steps " << run.steps << ", list kept " << run.reused
+              << ", touching " << run.touching << "; terms: vertexVertex "
+              << run.types[0] << ", vertexEdge " << run.types[1]
+              << ", vertexFace " << run.types[2] << ", edgeEdge "
+              << run.types[3] << std::endl;
+}
+
+
+TEST(candidateLists, noSkinMeansNoList)
+{
+    // featureSkin 0: the full search on every call, no list kept
+    const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
+    const Placed A(SA, Vec3::Zero(), Quat::Identity());
+    const Placed B(SB, Vec3(2.5, 0, 0), rotation(0.3, Vec3::UnitZ()));
+    NarrowPhaseSettings none;
+    FoundContact found[maxOut];
+    FeaturePairEntry buffer[FeaturePairList::capacity];
+    FeaturePairList list;
+    list.buffer = buffer;
+    list.count = 3;
+    Vec3 axis = Vec3::Zero();
+    findContacts(A.view(), B.view(), none, axis, found, maxOut, &list);
+    EXPECT_EQ(list.count, -1);
 }

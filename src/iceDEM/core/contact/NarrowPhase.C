@@ -4,7 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "NarrowPhase.H"
-#include "excessPotential.H"
+#include "candidateLists.H"
 
 #include <algorithm>
 #include <limits>
@@ -36,6 +36,9 @@ int findContacts
     const double rs = SA.radius() + SB.radius();
     const Vec3* wA = A.vertices;
     const Vec3* wB = B.vertices;
+
+    // featureSkin 0: no list (the full search on every call)
+    if (list && !(s.featureSkin > 0)) list->count = -1;
 
     // 1. Separating axes: the hint, then the line of centres (not while the
     //    list holds: the listed pairs give the contacts of a full search
@@ -88,66 +91,156 @@ int findContacts
         }
     }
 
-    // No feature-pair list: the excess potential's terms are found by one
-    // search over the slab's candidates on every call
-    if (list) list->count = -1;
-    TermCollector col(out, maxOut, SA.radius(), SB.radius());
-
-    // 2. Features inside the slab of the best axis (exact culling: a point
-    //    farther than r_A + r_B from the other core's slab cannot touch it;
-    //    a point of Q within r_A + r_B of a vertex of P lies in Q's slab, so
-    //    the face or edge that holds it has a vertex there, and the
-    //    distance of a vertex to the candidate faces and edges is its
-    //    distance to the whole core whenever it is below r_A + r_B)
+    // The features inside the slab of the best axis widened by w (exact
+    // culling: a vertex of P farther than R + w from Q's slab is farther
+    // than R + w from Q; a point of Q within R + w of a vertex of P lies in
+    // Q's slab widened by R + w, so the face or edge that holds it has a
+    // vertex there, and the distance of a vertex to the candidate faces
+    // and edges is its distance to the whole core whenever it is below
+    // R + w)
     int candA[maxShapeVertices], candB[maxShapeVertices];
     bool isCandA[maxShapeVertices], isCandB[maxShapeVertices];
     int nCandA = 0, nCandB = 0;
-    const double loA = bestMinB - rs;
-    const double hiB = bestMaxA + rs;
-    for (int i = 0; i < nA; ++i)
-    {
-        isCandA[i] = best.dot(wA[i]) >= loA;
-        if (isCandA[i]) candA[nCandA++] = i;
-    }
-    for (int j = 0; j < nB; ++j)
-    {
-        isCandB[j] = best.dot(wB[j]) <= hiB;
-        if (isCandB[j]) candB[nCandB++] = j;
-    }
-
-    // Candidate faces and edges: at least one vertex in the slab
-    auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
-    {
-        for (int k = 0; k < P.faces()[f].count; ++k)
-        {
-            if (isCand[P.faceVertex(f, k)]) return true;
-        }
-        return false;
-    };
     const auto& EA = PA.edges();
     const auto& EB = PB.edges();
     const int nFA = static_cast<int>(PA.faces().size());
     const int nFB = static_cast<int>(PB.faces().size());
     bool isCandFaceA[2*maxShapeVertices], isCandFaceB[2*maxShapeVertices];
     bool isCandEdgeA[3*maxShapeVertices], isCandEdgeB[3*maxShapeVertices];
-    for (int f = 0; f < nFA; ++f) isCandFaceA[f] = faceHasCandidate(PA, f, isCandA);
-    for (int f = 0; f < nFB; ++f) isCandFaceB[f] = faceHasCandidate(PB, f, isCandB);
-    for (int e = 0; e < int(EA.size()); ++e) isCandEdgeA[e] = isCandA[EA[e][0]] || isCandA[EA[e][1]];
-    for (int e = 0; e < int(EB.size()); ++e) isCandEdgeB[e] = isCandB[EB[e][0]] || isCandB[EB[e][1]];
+    auto candidates = [&](double w)
+    {
+        const double loA = bestMinB - rs - w;
+        const double hiB = bestMaxA + rs + w;
+        nCandA = nCandB = 0;
+        for (int i = 0; i < nA; ++i)
+        {
+            isCandA[i] = best.dot(wA[i]) >= loA;
+            if (isCandA[i]) candA[nCandA++] = i;
+        }
+        for (int j = 0; j < nB; ++j)
+        {
+            isCandB[j] = best.dot(wB[j]) <= hiB;
+            if (isCandB[j]) candB[nCandB++] = j;
+        }
+        // Candidate faces and edges: at least one vertex in the slab
+        auto faceHasCandidate = [](const ConvexPolyhedron& P, int f, const bool* isCand)
+        {
+            for (int k = 0; k < P.faces()[f].count; ++k)
+            {
+                if (isCand[P.faceVertex(f, k)]) return true;
+            }
+            return false;
+        };
+        for (int f = 0; f < nFA; ++f) isCandFaceA[f] = faceHasCandidate(PA, f, isCandA);
+        for (int f = 0; f < nFB; ++f) isCandFaceB[f] = faceHasCandidate(PB, f, isCandB);
+        for (int e = 0; e < int(EA.size()); ++e) isCandEdgeA[e] = isCandA[EA[e][0]] || isCandA[EA[e][1]];
+        for (int e = 0; e < int(EB.size()); ++e) isCandEdgeB[e] = isCandB[EB[e][0]] || isCandB[EB[e][1]];
+    };
 
-    // 3. The terms (NarrowPhase.H): vertices of A against B's core and of B
-    //    against A's (one function, the roles swapped), less the
-    //    vertex-vertex doubles, plus the edge-edge excess
-    VertexClosest infoA[maxShapeVertices], infoB[maxShapeVertices];
-    vertexTerms<true>(col, A, B, candA, nCandA, isCandFaceB, isCandEdgeB, infoA);
-    vertexTerms<false>(col, B, A, candB, nCandB, isCandFaceA, isCandEdgeA, infoB);
-    vertexVertexTerms(col, A, B, candA, nCandA, candB, nCandB, infoA, infoB);
-    edgeEdgeTerms
-    (
-        col, A, B,
-        [&](int e) { return isCandEdgeA[e]; },
-        [&](int e) { return isCandEdgeB[e]; }
-    );
+    TermCollector col(out, maxOut, SA.radius(), SB.radius());
+
+    // 2. The candidate lists (candidateLists.H): the pair's list while the
+    //    two cores have moved less than the skin relative to each other
+    //    since its build, else a new one; the same terms as the full
+    //    search below, to the bit
+    bool listed = false;
+    if (list && s.featureSkin > 0)
+    {
+        const RelativePose now = relativePose(A, B);
+        double m = -1;
+        if (list->count >= 0)
+        {
+            m = relativeMotionBound
+            (
+                list->t, list->Q, now.t, now.Q,
+                SA.boundingRadius(), SB.boundingRadius()
+            );
+        }
+        if (m >= 0 && m < s.featureSkin)
+        {
+            walkList(col, A, B, list->entries, list->count, m);
+            listed = true;
+        }
+        else
+        {
+            list->count = -1;
+            candidates(s.featureSkin + listSlack*rs);
+            ListWriter writer(list->buffer, FeaturePairList::capacity, rs);
+            const double reach = rs + s.featureSkin + writer.slack();
+            bool listedA[maxShapeVertices], listedB[maxShapeVertices];
+            bool ok =
+                listVertexGroups
+                (
+                    writer, A, B, candA, nCandA, isCandFaceB, isCandEdgeB,
+                    reach, s.featureSkin, true, listedA
+                )
+             && listVertexGroups
+                (
+                    writer, B, A, candB, nCandB, isCandFaceA, isCandEdgeA,
+                    reach, s.featureSkin, false, listedB
+                );
+            for (int ci = 0; ok && ci < nCandA && !writer.overflow; ++ci)
+            {
+                const int i = candA[ci];
+                if (!listedA[i]) continue;
+                for (int cj = 0; cj < nCandB; ++cj)
+                {
+                    const int j = candB[cj];
+                    if (!listedB[j]) continue;
+                    const double dist = (wB[j] - wA[i]).norm();
+                    if (dist < reach) writer.push(kVertexPair, i, j, dist);
+                }
+            }
+            for (int a = 0; ok && a < int(EA.size()) && !writer.overflow; ++a)
+            {
+                if (!isCandEdgeA[a]) continue;
+                const Vec3& p0 = wA[EA[a][0]];
+                const Vec3& p1 = wA[EA[a][1]];
+                Vec3 midA;
+                double reachA;
+                edgeReach(A, a, reach, midA, reachA);
+                for (int b = 0; b < int(EB.size()); ++b)
+                {
+                    if (!isCandEdgeB[b]) continue;
+                    Vec3 midB;
+                    double halfB;
+                    edgeBall(B, b, midB, halfB);
+                    // Balls apart: a lower bound of the distance above reach
+                    if ((midB - midA).norm() - halfB >= reachA) continue;
+                    const double lb = segmentDistanceLowerBound(p0, p1, wB[EB[b][0]], wB[EB[b][1]]);
+                    if (lb < reach) writer.push(kEdgePair, a, b, lb);
+                }
+            }
+            if (ok && !writer.overflow)
+            {
+                list->count = writer.n;
+                list->entries = list->buffer;
+                list->t = now.t;
+                list->Q = now.Q;
+                walkList(col, A, B, list->entries, list->count, 0);
+                listed = true;
+            }
+        }
+    }
+
+    if (!listed)
+    {
+        // 3. The full search: the terms (NarrowPhase.H) over the slab's
+        //    candidates, vertices of A against B's core and of B against
+        //    A's (one function, the roles swapped), less the vertex-vertex
+        //    doubles, plus the edge-edge excess
+        candidates(0);
+        VertexClosest infoA[maxShapeVertices], infoB[maxShapeVertices];
+        vertexTerms<true>(col, A, B, candA, nCandA, isCandFaceB, isCandEdgeB, infoA);
+        vertexTerms<false>(col, B, A, candB, nCandB, isCandFaceA, isCandEdgeA, infoB);
+        vertexVertexTerms(col, A, B, candA, nCandA, candB, nCandB, infoA, infoB);
+        edgeEdgeTerms
+        (
+            col, A, B,
+            [&](int e) { return isCandEdgeA[e]; },
+            [&](int e) { return isCandEdgeB[e]; }
+        );
+    }
 
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
