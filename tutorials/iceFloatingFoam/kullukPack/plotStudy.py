@@ -132,13 +132,18 @@ def hullCounts(d, tStart, floes, pieces=0):
     if not files:
         return float("nan"), float("nan"), float("nan"), float("nan")
     # every session's file (a restart writes postProcessing/iceDEM/<start>/),
-    # a later session replacing the write times it repeats, as readSeries
+    # an earlier session's rows kept only before the next one's start, as
+    # readSeries (what a stopped session wrote past its last restart point
+    # was run again)
+    starts = [float(f.split("/")[-2]) for f in files]
     rows = {}
-    for f in files:
+    for k, f in enumerate(files):
+        end = starts[k + 1] if k + 1 < len(files) else math.inf
         for line in open(f):
             if not line.startswith("#") and line.strip():
                 v = line.split()
-                rows[(float(v[0]), int(v[1]))] = v
+                if float(v[0]) < end:
+                    rows[(float(v[0]), int(v[1]))] = v
     h = float(readParameters(d)["thickness"])
     under, down, near, vx = {}, {}, {}, []
     for key in sorted(rows):
