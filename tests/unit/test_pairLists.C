@@ -288,6 +288,40 @@ TEST(candidateLists, sameTermsAsTheFullSearchBitForBit)
 }
 
 
+TEST(candidateLists, skinBeyondTheContactsHoldsForTheNearestVertex)
+{
+    // A skin larger than the dilation radii's sum (0.3 m against R =
+    // 0.2 m; kullukPack: 0.1 m against 0.1 m): every vertex of a contact
+    // is within the skin of the other core, so a list may hold only until
+    // the nearest listed vertex could reach the other core's inside (its
+    // limit, candidateLists.H). The same terms as the full search to the
+    // bit, and the lists are kept (before the limit, a touching pair was
+    // searched in full at every step: no list kept while touching)
+    const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
+    ListRun run;
+    int seed = 500;
+    for (const bool upright : {true, false})
+    {
+        for (const double stepSize : {0.004, 0.02})
+        {
+            for (int k = 0; k < 5; ++k)
+            {
+                walkPair(SA, SB, upright, 0.3, stepSize, seed++, run);
+                if (::testing::Test::HasFailure()) return;
+            }
+        }
+    }
+    EXPECT_EQ(run.steps, 20*400);
+    EXPECT_GT(run.touching, run.steps/2);
+    EXPECT_GT(run.reused, run.steps/2);
+    // Rebuilt (at each walk's start and when a list lapses) often enough
+    // that the builds are compared too
+    EXPECT_GT(run.steps - run.reused, 200);
+    std::cout << "steps " << run.steps << ", list kept " << run.reused
+              << ", touching " << run.touching << std::endl;
+}
+
+
 TEST(candidateLists, noSkinMeansNoList)
 {
     // featureSkin 0: the full search on every call, no list kept

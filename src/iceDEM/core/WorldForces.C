@@ -290,6 +290,7 @@ void World::pairForces(double dtTangential)
                 list.entries = oldEntries + L.firstEntry;
                 list.t = L.t;
                 list.Q = L.Q;
+                list.limit = L.limit;
                 list.touched = p.nContacts > 0;
             }
             double separation = std::numeric_limits<double>::lowest();
@@ -342,6 +343,7 @@ void World::pairForces(double dtTangential)
                 StoredFeatureList L;
                 L.t = list.t;
                 L.Q = list.Q;
+                L.limit = list.limit;
                 L.count = list.count;
                 stageList(p, L, list.entries);
             }

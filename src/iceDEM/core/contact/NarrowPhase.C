@@ -156,7 +156,7 @@ int findContacts
                 SA.boundingRadius(), SB.boundingRadius()
             );
         }
-        if (m >= 0 && m < s.featureSkin)
+        if (m >= 0 && m < list->limit)
         {
             walkList(col, A, B, list->entries, list->count, m);
             listed = true;
@@ -168,17 +168,22 @@ int findContacts
             ListWriter writer(list->buffer, FeaturePairList::capacity, rs);
             const double reach = rs + s.featureSkin + writer.slack();
             bool listedA[maxShapeVertices], listedB[maxShapeVertices];
+            double dMin = std::numeric_limits<double>::infinity();
             bool ok =
                 listVertexGroups
                 (
                     writer, A, B, candA, nCandA, isCandFaceB, isCandEdgeB,
-                    reach, s.featureSkin, true, listedA
+                    reach, true, listedA, dMin
                 )
              && listVertexGroups
                 (
                     writer, B, A, candB, nCandB, isCandFaceA, isCandEdgeA,
-                    reach, s.featureSkin, false, listedB
+                    reach, false, listedB, dMin
                 );
+            // The list's life (candidateLists.H): no listed vertex may
+            // reach the other core's inside
+            const double limit = std::min(s.featureSkin, dMin - writer.slack());
+            ok = ok && limit > 0;
             for (int ci = 0; ok && ci < nCandA && !writer.overflow; ++ci)
             {
                 const int i = candA[ci];
@@ -217,6 +222,7 @@ int findContacts
                 list->entries = list->buffer;
                 list->t = now.t;
                 list->Q = now.Q;
+                list->limit = limit;
                 walkList(col, A, B, list->entries, list->count, 0);
                 listed = true;
             }
