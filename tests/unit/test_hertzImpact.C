@@ -259,3 +259,61 @@ TEST(contactLaw, overlapAtStartIsAnError)
     w.addBody(cube, mat, Vec3(0.3, 0, 0));
     EXPECT_THROW(w.initialise(), Error);
 }
+
+
+TEST(hertzImpact, overlapBeyondTheDilationRadiiStopsTheRun)
+{
+    // A cube falls corner first at 5 m/s onto a fixed slab. Resolved
+    // (dt = 2e-5 s) the overlap peaks far below r_i + r_j = 0.1 m and the
+    // impact runs through; with dt = 0.03 s (the contact-time check
+    // relaxed) the first step of contact carries the corner 0.15 m, into
+    // the slab's core: World::step stops with an Error naming deltaT
+    // instead of going on with forces beyond the contact model's range
+    const double r = 0.05, h = 0.5, v = 5.0, E = 1e9;
+    auto makeWorld = [&](double dt)
+    {
+        WorldSettings s = impactSettings(dt, 1);
+        s.contactStepsMin = 0.1;
+        s.contactStepsWarn = 0.1;
+        auto w = std::make_unique<World>(s);
+        const int mat = w->addMaterial(ice(E));
+        w->setPairProperties(mat, mat, PairProperties{0.0, 1.0});
+        const int cube = w->addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+        const int slab = w->addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
+        w->addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+        const double zc = std::sqrt(3.0)*h + r + 1e-3;
+        w->addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
+        w->initialise();
+        return w;
+    };
+
+    auto resolved = makeWorld(2e-5);
+    double deepest = 0;
+    bool touched = false;
+    while (resolved->time() < 0.2)
+    {
+        EXPECT_NO_THROW(resolved->step());
+        for (const auto& c : resolved->contacts())
+        {
+            deepest = std::max(deepest, c.overlap);
+            touched = true;
+        }
+        if (touched && resolved->contactCount() == 0) break;
+    }
+    EXPECT_TRUE(touched);
+    EXPECT_GT(deepest, 0.005);
+    EXPECT_LT(deepest, 0.5*2*r);
+    EXPECT_GT(resolved->bodies()[1].v.z(), 0);     // bounced
+
+    auto coarse = makeWorld(0.03);
+    try
+    {
+        coarse->step();
+        FAIL() << "no Error for an overlap beyond the dilation radii";
+    }
+    catch (const Error& err)
+    {
+        EXPECT_EQ(err.entry(), "deltaT");
+        EXPECT_NE(std::string(err.what()).find("reduce deltaT"), std::string::npos) << err.what();
+    }
+}

@@ -216,6 +216,7 @@ void World::stepBy(double dt)
 
         if (oneRegion) sumBodyForces(dt, slowStep ? interval : 0);
     }
+    checkOverlapRange();
 
     // Body-force models: their serial preparation, then the body sums and
     // the second half kick

@@ -376,6 +376,17 @@ void Foam::iceDEMCase::stepDone(scalar h) const
 }
 
 
+Foam::string Foam::iceDEMCase::entryContext(const std::exception& err) const
+{
+    const ::iceDEM::Error* ice = dynamic_cast<const ::iceDEM::Error*>(&err);
+    if (ice && !ice->entry().empty() && properties_.found(ice->entry(), keyType::LITERAL))
+    {
+        return " (entry '" + ice->entry() + "' of " + properties_.objectPath() + ")";
+    }
+    return string();
+}
+
+
 void Foam::iceDEMCase::advanceTo(scalar t)
 {
     ::iceDEM::World& w = *world_;
@@ -427,6 +438,7 @@ void Foam::iceDEMCase::advanceTo(scalar t)
         FatalErrorInFunction
             << "DEM stopped at time " << w.time()
             << " (advancing to " << t << "): " << err.what() << nl
+            << entryContext(err).c_str() << nl
             << exit(FatalError);
     }
 }

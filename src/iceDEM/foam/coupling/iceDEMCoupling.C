@@ -419,6 +419,7 @@ void Foam::iceDEMCoupling::solve()
         FatalErrorInFunction
             << "DEM stopped at time " << w.time()
             << " (advancing to " << t1 << "): " << err.what() << nl
+            << case_->entryContext(err).c_str() << nl
             << exit(FatalError);
     }
 
