@@ -598,6 +598,17 @@ void World::initialise(bool restart)
                     << " m): move them apart";
                 throw Error(msg.str(), "bodies");
             }
+            // A body may rest on a wall, but its core may not cross it
+            // (beyond the contact model's range: checkOverlapRange)
+            const double r = shapes_[bodies_[p.i].shape].radius();
+            if (p.nContacts > 0 && p.isWall() && !(p.deepest < r))
+            {
+                std::ostringstream msg;
+                msg << "body " << bodies_[p.i].id << " lies across wall "
+                    << walls_[p.wall()].name << " at the start (overlap " << p.deepest
+                    << " m, dilation radius " << r << " m): move the wall or the body";
+                throw Error(msg.str(), "walls");
+            }
         }
     }
     initialised_ = true;
