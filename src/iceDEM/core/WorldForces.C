@@ -166,30 +166,41 @@ bool World::certifiedApart(const ContactPair& p) const
 }
 
 
+World::PairMotion World::pairMotion(const ContactPair& p) const
+{
+    PairMotion pm;
+    const Body& bi = bodies_[p.i];
+    const Body* bj = p.isWall() ? nullptr : &bodies_[p.j];
+    const int M = static_cast<int>(materials_.size());
+    const int matJ = bj ? bj->material : walls_[p.wall()].material;
+    pm.coeffs = &pairCoeffs_[bi.material*M + matJ];
+
+    if (!bj || !bj->isFree()) pm.mEff = bi.mass;
+    else if (!bi.isFree()) pm.mEff = bj->mass;
+    else pm.mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
+
+    pm.bi = &bi;
+    pm.bj = bj;
+    pm.omegaI = &omegas_[p.i];
+    pm.omegaJ = bj ? &omegas_[p.j] : nullptr;
+    pm.xJ = bj ? centroidOfJ(p) : Vec3::Zero();
+    return pm;
+}
+
+
 ContactResult World::contactForce
 (
-    const ContactPair& p,
+    const PairMotion& pm,
     const ContactGeometry& g,
     Vec3& xi,
     double dtTangential
 ) const
 {
-    const Body& bi = bodies_[p.i];
-    const Body* bj = p.isWall() ? nullptr : &bodies_[p.j];
-    const int M = static_cast<int>(materials_.size());
-    const int matJ = bj ? bj->material : walls_[p.wall()].material;
-    const PairCoefficients& coeffs = pairCoeffs_[bi.material*M + matJ];
-
-    double mEff;
-    if (!bj || !bj->isFree()) mEff = bi.mass;
-    else if (!bi.isFree()) mEff = bj->mass;
-    else mEff = bi.mass*bj->mass/(bi.mass + bj->mass);
-
     const Vec3& x = g.point;
-    Vec3 vRel = -(bi.v + omegas_[p.i].cross(x - bi.x));
-    if (bj) vRel += bj->v + omegas_[p.j].cross(x - centroidOfJ(p));
+    Vec3 vRel = -(pm.bi->v + pm.omegaI->cross(x - pm.bi->x));
+    if (pm.bj) vRel += pm.bj->v + pm.omegaJ->cross(x - pm.xJ);
 
-    return law_->evaluate(coeffs, g, mEff, vRel, xi, dtTangential);
+    return law_->evaluate(*pm.coeffs, g, pm.mEff, vRel, xi, dtTangential);
 }
 
 
@@ -310,6 +321,8 @@ void World::pairForces(double dtTangential)
             const StoredContact* previous = oldContacts + p.firstContact;
             const int nPrev = p.nContacts;
             clearPairForces(p);
+            PairMotion pm{};
+            if (nFound > 0) pm = pairMotion(p);
 
             for (int c = 0; c < nFound; ++c)
             {
@@ -326,14 +339,14 @@ void World::pairForces(double dtTangential)
                         break;
                     }
                 }
-                const ContactResult r = contactForce(p, fc.g, sc.xi, dtTangential);
+                const ContactResult r = contactForce(pm, fc.g, sc.xi, dtTangential);
                 S.contacts.push_back(sc);
                 ++p.nContacts;
 
                 const Vec3& x = fc.g.point;
                 p.forceOnJ += r.forceOnJ;
-                p.torqueOnI += (x - bodies_[p.i].x).cross(-r.forceOnJ) - r.coupleOnJ;
-                if (!p.isWall()) p.torqueOnJ += (x - centroidOfJ(p)).cross(r.forceOnJ) + r.coupleOnJ;
+                p.torqueOnI += (x - pm.bi->x).cross(-r.forceOnJ) - r.coupleOnJ;
+                if (pm.bj) p.torqueOnJ += (x - pm.xJ).cross(r.forceOnJ) + r.coupleOnJ;
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }

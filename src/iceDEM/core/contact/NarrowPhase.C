@@ -40,11 +40,44 @@ int findContacts
     // featureSkin 0: no list (the full search on every call)
     if (list && !(s.featureSkin > 0)) list->count = -1;
 
-    // 1. Separating axes: the hint, then the line of centres (not while the
-    //    list holds: the listed pairs give the contacts of a full search
-    //    whatever the axes say, which only save work, and the hint, the
-    //    last contact normal or closest pair's direction, is the axis that
-    //    separates such a pair)
+    TermCollector col(out, maxOut, SA.radius(), SB.radius());
+
+    // 1. The pair's candidate list (candidateLists.H) holds while the two
+    //    cores have moved less than its limit relative to each other since
+    //    its build. A pair that touched at its last search walks it first:
+    //    if it still touches, the separating axes below need only show
+    //    that they do not separate
+    double m = -1;
+    RelativePose now{Vec3::Zero(), Quat::Identity()};
+    if (list && s.featureSkin > 0)
+    {
+        now = relativePose(A, B);
+        if (list->count >= 0)
+        {
+            m = relativeMotionBound
+            (
+                list->t, list->Q, now.t, now.Q,
+                SA.boundingRadius(), SB.boundingRadius()
+            );
+        }
+    }
+    const bool holds = list && s.featureSkin > 0 && m >= 0 && m < list->limit;
+    bool walked = false;
+    if (holds && list->touched)
+    {
+        walkList(col, A, B, list->entries, list->count, m);
+        walked = true;
+    }
+    const bool touching = walked && col.n > 0;
+
+    // 2. Separating axes: the hint, then the line of centres; the first
+    //    that separates ends the search (a walk's terms dropped: the
+    //    search is that of a separated pair). Where the walk found terms
+    //    an axis is dropped as soon as it cannot separate: its gap, min
+    //    a.w_B - max a.w_A, is at most that of the vertices seen so far
+    //    (rounding is monotone), and its other products (the best axis:
+    //    the slab of a build or a full search, the hint where nothing
+    //    touches) are not needed
     Vec3 axes[2];
     int nAxes = 0;
     if (axis.squaredNorm() > 0.5)
@@ -67,10 +100,35 @@ int findContacts
     for (int k = 0; k < nAxes; ++k)
     {
         const Vec3& a = axes[k];
-        double maxA = -std::numeric_limits<double>::max();
-        double minB = std::numeric_limits<double>::max();
-        for (int i = 0; i < nA; ++i) maxA = std::max(maxA, a.dot(wA[i]));
-        for (int j = 0; j < nB; ++j) minB = std::min(minB, a.dot(wB[j]));
+        // Infinite, not the largest double: minB - maxA must not overflow
+        // (OpenFOAM traps floating-point overflow)
+        double maxA = -std::numeric_limits<double>::infinity();
+        double minB = std::numeric_limits<double>::infinity();
+        if (touching)
+        {
+            // The terms' vertices first (a vertex of each body in
+            // contact), then both bodies' in turn, until a vertex of A and
+            // one of B project less than R apart; else all are seen and
+            // maxA, minB are the extremes
+            for (int t = 0; t < col.n; ++t)
+            {
+                const std::uint32_t fa = out[t].featureA, fb = out[t].featureB;
+                if ((fa >> 30) == kVertex) maxA = std::max(maxA, a.dot(wA[fa & 0x3fffffffu]));
+                if ((fb >> 30) == kVertex) minB = std::min(minB, a.dot(wB[fb & 0x3fffffffu]));
+            }
+            int i = 0, j = 0;
+            while (!(minB - maxA < rs) && (i < nA || j < nB))
+            {
+                if (i < nA) maxA = std::max(maxA, a.dot(wA[i++]));
+                if (j < nB) minB = std::min(minB, a.dot(wB[j++]));
+            }
+            if (minB - maxA < rs) continue;
+        }
+        else
+        {
+            for (int i = 0; i < nA; ++i) maxA = std::max(maxA, a.dot(wA[i]));
+            for (int j = 0; j < nB; ++j) minB = std::min(minB, a.dot(wB[j]));
+        }
         const double gap = minB - maxA;
         if (gap >= rs)
         {
@@ -137,26 +195,12 @@ int findContacts
         for (int e = 0; e < int(EB.size()); ++e) isCandEdgeB[e] = isCandB[EB[e][0]] || isCandB[EB[e][1]];
     };
 
-    TermCollector col(out, maxOut, SA.radius(), SB.radius());
-
-    // 2. The candidate lists (candidateLists.H): the pair's list while the
-    //    two cores have moved less than the skin relative to each other
-    //    since its build, else a new one; the same terms as the full
-    //    search below, to the bit
-    bool listed = false;
-    if (list && s.featureSkin > 0)
+    // 3. The held list (walked above if the pair touched), else a new one:
+    //    the same terms as the full search below, to the bit
+    bool listed = walked;
+    if (!walked && list && s.featureSkin > 0)
     {
-        const RelativePose now = relativePose(A, B);
-        double m = -1;
-        if (list->count >= 0)
-        {
-            m = relativeMotionBound
-            (
-                list->t, list->Q, now.t, now.Q,
-                SA.boundingRadius(), SB.boundingRadius()
-            );
-        }
-        if (m >= 0 && m < list->limit)
+        if (holds)
         {
             walkList(col, A, B, list->entries, list->count, m);
             listed = true;
@@ -231,7 +275,7 @@ int findContacts
 
     if (!listed)
     {
-        // 3. The full search: the terms (NarrowPhase.H) over the slab's
+        // 4. The full search: the terms (NarrowPhase.H) over the slab's
         //    candidates, vertices of A against B's core and of B against
         //    A's (one function, the roles swapped), less the vertex-vertex
         //    doubles, plus the edge-edge excess
