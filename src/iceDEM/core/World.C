@@ -600,13 +600,12 @@ void World::initialise(bool restart)
             }
             // A body may rest on a wall, but its core may not cross it
             // (beyond the contact model's range: checkOverlapRange)
-            const double r = shapes_[bodies_[p.i].shape].radius();
-            if (p.nContacts > 0 && p.isWall() && !(p.deepest < r))
+            if (p.nContacts > 0 && p.isWall() && !(p.deepest < dilationSum(p)))
             {
                 std::ostringstream msg;
                 msg << "body " << bodies_[p.i].id << " lies across wall "
                     << walls_[p.wall()].name << " at the start (overlap " << p.deepest
-                    << " m, dilation radius " << r << " m): move the wall or the body";
+                    << " m, dilation radius " << dilationSum(p) << " m): move the wall or the body";
                 throw Error(msg.str(), "walls");
             }
         }
@@ -730,6 +729,7 @@ std::vector<World::ContactInfo> World::contacts() const
         if (p.nContacts == 0) continue;
         Vec3 axis = p.axis;
         const int n = findPairContacts(p, axis, found);
+        const PairMotion pm = pairMotion(p);
         for (int c = 0; c < n; ++c)
         {
             Vec3 xi = Vec3::Zero();
@@ -741,7 +741,7 @@ std::vector<World::ContactInfo> World::contacts() const
                     xi = sc[m].xi;
                 }
             }
-            const ContactResult r = contactForce(p, found[c].g, xi, 0);
+            const ContactResult r = contactForce(pm, found[c].g, xi, 0);
             list.push_back
             (
                 {p.i, p.j, found[c].g.type, found[c].g.point, found[c].g.normal, r.forceOnJ, found[c].g.overlap}
@@ -802,14 +802,20 @@ void World::checkFinite() const
 }
 
 
+double World::dilationSum(const ContactPair& p) const
+{
+    return
+        shapes_[bodies_[p.i].shape].radius()
+      + (p.isWall() ? 0 : shapes_[bodies_[p.j].shape].radius());
+}
+
+
 void World::checkOverlapRange() const
 {
     for (const ContactPair& p : nlist_->pairs())
     {
         if (p.nContacts == 0) continue;
-        const double R =
-            shapes_[bodies_[p.i].shape].radius()
-          + (p.isWall() ? 0 : shapes_[bodies_[p.j].shape].radius());
+        const double R = dilationSum(p);
         if (!(p.deepest < R))
         {
             const double tc = estimatedContactTime();
