@@ -4,6 +4,12 @@
 # points (the folders with a file 'done') of runStudy or domainConvergence.
 #
 #   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
+#                        [--runs results/studyFull_study_runs.csv]
+#
+# --runs CSV: rows of a study_runs.csv written before (a study that ran on
+# several machines or sessions whose point folders are gone): every row whose
+# point has no finished folder in DIR is taken as it is; a finished folder
+# replaces its row. Rows of another transient are refused.
 #
 # Per run, from postProcessing/iceLoadStatistics/<start>/series.dat of every
 # session (a resumed run has one folder per session; the samples of a
@@ -240,6 +246,28 @@ def analyseRun(d, transient):
     return r
 
 
+def readRuns(path, transient):
+    """The rows of a study_runs.csv as analyseRun gives them (numbers as float,
+    the seed, samples, floes and finished as int, the rest as text)."""
+    ints = {"seed", "samples", "floes", "finished"}
+    lines = [l.rstrip("\n").split(",") for l in open(path) if l.strip()]
+    keys, rows = lines[0], []
+    for n, v in enumerate(lines[1:], start=2):
+        if len(v) != len(keys):
+            sys.exit(f"plotStudy: {path} line {n}: {len(v)} fields, the header has {len(keys)}")
+        r = {}
+        for k, x in zip(keys, v):
+            try:
+                r[k] = int(float(x)) if k in ints else float(x)
+            except ValueError:
+                r[k] = x
+        if r.get("steadyFrom") != transient:
+            sys.exit(f"plotStudy: {path} line {n} ({r.get('dir')}): transient "
+                     f"{r.get('steadyFrom')} s, this analysis uses {transient} s")
+        rows.append(r)
+    return rows
+
+
 def writeCsv(path, rows, keys):
     with open(path, "w") as f:
         f.write(",".join(keys) + "\n")
@@ -255,6 +283,8 @@ def main():
     ap.add_argument("--convergence", action="store_true")
     ap.add_argument("--unfinished", action="store_true",
                     help="also the points still running or stopped (column finished = 0)")
+    ap.add_argument("--runs", help="a study_runs.csv of points analysed before; a finished "
+                    "folder in DIR replaces its row")
     a = ap.parse_args()
     runs = []
     for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
@@ -265,6 +295,11 @@ def main():
                 print(f"plotStudy: {d}: too few steady samples, left out")
             else:
                 runs.append(r)
+    if a.runs:
+        here = {r["dir"] for r in runs}
+        kept = [r for r in readRuns(a.runs, a.transient) if r["dir"] not in here]
+        print(f"plotStudy: {len(kept)} runs taken from {a.runs}")
+        runs = sorted(runs + kept, key=lambda r: r["dir"])
     if not runs:
         print(f"plotStudy: no finished point in {a.dir}")
         return 0
