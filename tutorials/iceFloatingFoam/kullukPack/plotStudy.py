@@ -366,6 +366,10 @@ def figures(d, runs, agg):
         a_.grid(alpha=0.3)
     ax[0, 0].axhline(1.0, color="k", ls=":", label="field: order 1 MN, managed broken ice")
     ax[0, 1].axhline(1.0, color="k", ls=":")
+    # the loads are one to two orders below the field's: a log axis shows
+    # their trends beside it
+    ax[0, 0].set_yscale("log")
+    ax[0, 1].set_yscale("log")
     for a_ in (ax[1, 0], ax[1, 1]):
         a_.axhspan(5, 10, color="r", alpha=0.1, label="mooring capacity, order 5-10 MN")
         a_.axhline(1.5, color="gray", ls="--", lw=0.8, label="pretension 1.5 MN (assumed)")
