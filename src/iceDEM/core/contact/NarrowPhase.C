@@ -292,6 +292,50 @@ int findContacts
         );
     }
 
+    // 5. Nothing touches, and neither axis above separated: the pair is
+    //    searched again at every step unless something certifies it apart.
+    //    The cores' face normals are tried (two convex polyhedra are
+    //    separated along a face normal of one or a cross product of two
+    //    edges; for two floes side by side mostly a side's normal); the
+    //    widest gap beyond the radii certifies the pair (World skips it
+    //    while its relative motion stays below the separation) and is the
+    //    next search's hint. The terms are those of a search either way
+    if (col.n == 0 && separation)
+    {
+        double gap = -std::numeric_limits<double>::infinity();
+        Vec3 along = Vec3::Zero();
+        auto tryAxis = [&](const Vec3& a)
+        {
+            double maxA = -std::numeric_limits<double>::infinity(), minA = -maxA;
+            double maxB = maxA, minB = minA;
+            for (int i = 0; i < nA; ++i)
+            {
+                const double p = a.dot(wA[i]);
+                maxA = std::max(maxA, p);
+                minA = std::min(minA, p);
+            }
+            for (int j = 0; j < nB; ++j)
+            {
+                const double p = a.dot(wB[j]);
+                maxB = std::max(maxB, p);
+                minB = std::min(minB, p);
+            }
+            if (minB - maxA > gap) { gap = minB - maxA; along = a; }
+            if (minA - maxB > gap) { gap = minA - maxB; along = -a; }
+        };
+        const auto facesA = PA.faces();
+        const auto facesB = PB.faces();
+        for (int f = 0; f < nFA; ++f) tryAxis(A.R*facesA[f].normal);
+        for (int f = 0; f < nFB; ++f) tryAxis(B.R*facesB[f].normal);
+        if (gap >= rs)
+        {
+            axis = along;
+            *separation =
+                gap - rs - separationTolerance*(SA.boundingRadius() + SB.boundingRadius());
+            return 0;
+        }
+    }
+
     // Next step's axis: the deepest contact's normal, else the direction of
     // the closest feature pair (a separating axis of convex cores)
     if (col.n > 0)
