@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 
 using namespace iceDEM;
 using namespace iceDEM::test;
@@ -87,6 +88,19 @@ double coreDistance(const World& w, int i, int j)
     return d;
 }
 
+//- A world without gravity (step 1 ms) with one ice material (index 0):
+//  E = 1 GPa, 920 kg/m3, restitution 0.2, friction 0.3
+std::unique_ptr<World> iceWorldWithoutGravity()
+{
+    WorldSettings s;
+    s.timeStep = 1e-3;
+    s.gravity = Vec3::Zero();
+    auto w = std::make_unique<World>(s);
+    const int mat = w->addMaterial(ice(1e9, 920));
+    w->setPairProperties(mat, mat, PairProperties{0.2, 0.3});
+    return w;
+}
+
 //- Body i of w as the narrow phase sees it; vertices: its world core
 BodyView viewOf(const World& w, int i, const std::vector<Vec3>& vertices)
 {
@@ -116,12 +130,9 @@ TEST(narrowPhase, twistedNearlyParallelEdgesCrossingKeepTheCoresApart)
     // contact at all, and the cores went through each other. (The excess
     // potential has the crossing as an edge-edge term, NarrowPhase.H.)
     const double alpha = 0.0063, beta = 0.03, r = 0.1;
-    WorldSettings s;
-    s.timeStep = 1e-3;
-    s.gravity = Vec3::Zero();
-    World w(s);
-    const int mat = w.addMaterial(ice(1e9, 920));
-    w.setPairProperties(mat, mat, PairProperties{0.2, 0.3});
+    const auto world = iceWorldWithoutGravity();
+    World& w = *world;
+    const int mat = 0;
     const int sA = w.addShape(DilatedShape(ConvexPolyhedron::prism
     (
         {{-4, -2.65}, {0, -2.65}, {0, 2.65}, {-4, 2.65}}, -0.4, 0.8
@@ -233,12 +244,9 @@ TEST(narrowPhase, faceNormalsCertifyAPairThatNeitherAxisSeparates)
     // face normals such a pair had no certificate and was searched in full
     // at every step (the drifting benchmark: 994 pairs per step, now 325).
     const double r = 0.1;
-    WorldSettings s;
-    s.timeStep = 1e-3;
-    s.gravity = Vec3::Zero();
-    World w(s);
-    const int mat = w.addMaterial(ice(1e9, 920));
-    w.setPairProperties(mat, mat, PairProperties{0.2, 0.3});
+    const auto world = iceWorldWithoutGravity();
+    World& w = *world;
+    const int mat = 0;
     const int box = w.addShape(DilatedShape(ConvexPolyhedron::prism
     (
         {{-10, -0.5}, {10, -0.5}, {10, 0.5}, {-10, 0.5}}, -0.4, 0.8
