@@ -89,7 +89,7 @@ double coreDistance(const World& w, int i, int j)
 }
 
 //- A world without gravity (step 1 ms) with one ice material (index 0):
-//  E = 1 GPa, 920 kg/m3, restitution 0.2, friction 0.3
+//  E = 1 GPa, 920 kg/m3, friction 0.2, restitution 0.3
 std::unique_ptr<World> iceWorldWithoutGravity()
 {
     WorldSettings s;
