@@ -14,6 +14,24 @@ namespace iceDEM
 
 using namespace narrowPhase;
 
+namespace
+{
+
+//- The extent [lo, hi] of n points w along the axis a
+void extentAlong(const Vec3& a, const Vec3* w, int n, double& lo, double& hi)
+{
+    lo = std::numeric_limits<double>::infinity();
+    hi = -lo;
+    for (int i = 0; i < n; ++i)
+    {
+        const double p = a.dot(w[i]);
+        lo = std::min(lo, p);
+        hi = std::max(hi, p);
+    }
+}
+
+} // anonymous namespace
+
 
 int findContacts
 (
@@ -306,20 +324,9 @@ int findContacts
         Vec3 along = Vec3::Zero();
         auto tryAxis = [&](const Vec3& a)
         {
-            double maxA = -std::numeric_limits<double>::infinity(), minA = -maxA;
-            double maxB = maxA, minB = minA;
-            for (int i = 0; i < nA; ++i)
-            {
-                const double p = a.dot(wA[i]);
-                maxA = std::max(maxA, p);
-                minA = std::min(minA, p);
-            }
-            for (int j = 0; j < nB; ++j)
-            {
-                const double p = a.dot(wB[j]);
-                maxB = std::max(maxB, p);
-                minB = std::min(minB, p);
-            }
+            double minA, maxA, minB, maxB;
+            extentAlong(a, wA, nA, minA, maxA);
+            extentAlong(a, wB, nB, minB, maxB);
             if (minB - maxA > gap) { gap = minB - maxA; along = a; }
             if (minA - maxB > gap) { gap = minA - maxB; along = -a; }
         };
@@ -369,21 +376,9 @@ bool coresIntersect(const BodyView& A, const BodyView& B)
     {
         const double len = a.norm();
         if (len < 1e-12) return false;
-        double maxA = -std::numeric_limits<double>::max();
-        double minA = std::numeric_limits<double>::max();
-        double maxB = maxA, minB = minA;
-        for (int i = 0; i < nA; ++i)
-        {
-            const double p = a.dot(A.vertices[i]);
-            maxA = std::max(maxA, p);
-            minA = std::min(minA, p);
-        }
-        for (int j = 0; j < nB; ++j)
-        {
-            const double p = a.dot(B.vertices[j]);
-            maxB = std::max(maxB, p);
-            minB = std::min(minB, p);
-        }
+        double minA, maxA, minB, maxB;
+        extentAlong(a, A.vertices, nA, minA, maxA);
+        extentAlong(a, B.vertices, nB, minB, maxB);
         return minB >= maxA || minA >= maxB;
     };
 
