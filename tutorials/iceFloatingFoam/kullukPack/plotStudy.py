@@ -5,6 +5,7 @@
 #
 #   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
 #                        [--runs results/studyFull_study_runs.csv]
+#                        [--markdown FILE]
 #
 # --runs CSV: rows of a study_runs.csv written before (a study that ran on
 # several machines or sessions whose point folders are gone): every row whose
@@ -20,7 +21,10 @@
 #   mean by 20 batch means (as iceLoadStatistics); the force balance: the
 #   mean of (F + W) along the mean driving force D against |mean D|, with
 #   the batch-means half-width of (F + W - D).d / |mean D|.
-#   Speed: floe-steps per second and contacts per step from speed.txt.
+#   Speed: floe-steps per second and contacts per step from speed.txt, and
+#   the commits its sessions ran from (commits, joined by '+'; "unknown"
+#   where speed.txt has none); the multi-rate step K (bodyForceInterval in
+#   the point's parameters; 1 where it is absent: the runs before the entry).
 #   At the hull (bodies.dat at the write times after the transient): the
 #   mean number of floes whose centre is inside the waterline circle (35 m:
 #   under the hull), and of floes within 60 m of the axis whose top is
@@ -35,7 +39,8 @@
 # Across seeds (one row per thickness and concentration): the mean of each
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
-# DIR/forceBalance.png (with --convergence: DIR/convergence.csv and
+# DIR/forceBalance.png; --markdown FILE: the table of every run (the
+# kullukPack README's "Results so far") (with --convergence: DIR/convergence.csv and
 # DIR/convergence.png, the mean load against the domain's length and width).
 # -----------------------------------------------------------------------------
 import argparse
@@ -197,7 +202,8 @@ def analyseRun(d, transient):
     p = readParameters(d)
     r = dict(dir=os.path.basename(d), length=float(p["length"]), width=float(p["width"]),
              thickness=float(p["thickness"]), concentration=float(p["concentration"]),
-             seed=int(p["seed"]), deltaT=float(p["deltaT"]), floeArea=float(p["floeArea"]),
+             seed=int(p["seed"]), deltaT=float(p["deltaT"]),
+             bodyForceInterval=int(p.get("bodyForceInterval", 1)), floeArea=float(p["floeArea"]),
              steadyFrom=transient, steadyTo=S[-1, 0], samples=len(S))
     for k, v in stats(Fh).items():
         r["Fh_" + k] = v
@@ -221,6 +227,12 @@ def analyseRun(d, transient):
         r["floeStepsPerSecond"] = int(rows[-1][0])*steps/wall if wall > 0 else float("nan")
         r["contactsPerStep"] = float(np.mean([float(x[4]) for x in rows]))
         r["wallTime"] = wall
+        commits = []
+        for x in rows:
+            c = x[6] if len(x) > 6 else "unknown"
+            if c not in commits:
+                commits.append(c)
+        r["commits"] = "+".join(commits)
     floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
                                     if l.split()[:1] == ["floes"]][-1])
     # the structure's pieces have the ids floes .. floes + pieces - 1 (the
@@ -249,7 +261,8 @@ def analyseRun(d, transient):
 def readRuns(path, transient):
     """The rows of a study_runs.csv as analyseRun gives them (numbers as float,
     the seed, samples, floes and finished as int, the rest as text)."""
-    ints = {"seed", "samples", "floes", "finished"}
+    ints = {"seed", "samples", "floes", "finished", "bodyForceInterval"}
+    texts = {"dir", "domain", "startVelocity", "commits"}   # "7e27389" is a float
     lines = [l.rstrip("\n").split(",") for l in open(path) if l.strip()]
     keys, rows = lines[0], []
     for n, v in enumerate(lines[1:], start=2):
@@ -257,6 +270,9 @@ def readRuns(path, transient):
             sys.exit(f"plotStudy: {path} line {n}: {len(v)} fields, the header has {len(keys)}")
         r = {}
         for k, x in zip(keys, v):
+            if k in texts:
+                r[k] = x
+                continue
             try:
                 r[k] = int(float(x)) if k in ints else float(x)
             except ValueError:
@@ -285,6 +301,7 @@ def main():
                     help="also the points still running or stopped (column finished = 0)")
     ap.add_argument("--runs", help="a study_runs.csv of points analysed before; a finished "
                     "folder in DIR replaces its row")
+    ap.add_argument("--markdown", help="write the table of every run (markdown) to this file")
     a = ap.parse_args()
     runs = []
     for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
@@ -303,7 +320,9 @@ def main():
     if not runs:
         print(f"plotStudy: no finished point in {a.dir}")
         return 0
-    keys = list(runs[0].keys())
+    keys = []   # every run's columns (rows written before a column existed lack it)
+    for r in runs:
+        keys += [k for k in r if k not in keys]
     for r in runs:
         for k in keys:
             r.setdefault(k, float("nan"))
@@ -318,6 +337,9 @@ def main():
               f"{r['Tmax_p99']/1e6:6.3f} | {r['ratio']:7.4f} +- {r['ratioHalfWidth']:6.4f} | "
               f"{r.get('floeStepsPerSecond', float('nan')):9.0f} {r.get('contactsPerStep', float('nan')):8.1f}")
 
+    if a.markdown:
+        writeMarkdown(a.markdown, runs)
+        print(f"plotStudy: the table of {len(runs)} runs -> {a.markdown}")
     if a.convergence:
         return convergence(a, runs)
 
@@ -340,6 +362,31 @@ def main():
     print(f"plotStudy: {len(agg)} points -> {a.dir}/study.csv")
     figures(a.dir, runs, agg)
     return 0
+
+
+def writeMarkdown(path, runs):
+    """The table of every run, thinnest ice and lowest concentration first."""
+    def num(r, k, scale=1.0, fmt="%.3f"):
+        v = r.get(k, float("nan"))
+        if not isinstance(v, (int, float)) or v != v:
+            return "n/a"
+        return fmt.format(v*scale) if "{" in fmt else fmt % (v*scale)
+    lines = ["| h [m] | c | seed | floes | DEM step [s]; K | commit(s) "
+             "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] | load/drive ± 95 % "
+             "| pack drift [m/s] | F_z [MN] | contacts per step |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
+        lines.append(
+            f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
+            f"| {r['floes']} | {r['deltaT']:g}; {num(r, 'bodyForceInterval', fmt='%d')} "
+            f"| {r.get('commits', 'unknown')} "
+            f"| **{num(r, 'Fh_mean', 1e-6)} ± {num(r, 'Fh_hw', 1e-6)}** "
+            f"| {num(r, 'Fh_p99', 1e-6, '%.2f')} | {num(r, 'Fh_max', 1e-6, '%.2f')} "
+            f"| {num(r, 'ratio', fmt='%.2f')} ± {num(r, 'ratioHalfWidth', fmt='%.2f')} "
+            f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '%.2f')} "
+            f"| {num(r, 'contactsPerStep', fmt='{:,.0f}')} |")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 def figures(d, runs, agg):
