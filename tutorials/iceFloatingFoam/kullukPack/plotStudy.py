@@ -372,9 +372,10 @@ def writeMarkdown(path, runs):
             return "n/a"
         return fmt.format(v*scale) if "{" in fmt else fmt % (v*scale)
     lines = ["| h [m] | c | seed | floes | DEM step [s]; K | commit(s) "
-             "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] | load/drive ± 95 % "
+             "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
+             "| largest line tension: mean / max [MN] | load/drive ± 95 % "
              "| pack drift [m/s] | F_z [MN] | contacts per step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
@@ -382,6 +383,7 @@ def writeMarkdown(path, runs):
             f"| {r.get('commits', 'unknown')} "
             f"| **{num(r, 'Fh_mean', 1e-6)} ± {num(r, 'Fh_hw', 1e-6)}** "
             f"| {num(r, 'Fh_p99', 1e-6, '%.2f')} | {num(r, 'Fh_max', 1e-6, '%.2f')} "
+            f"| {num(r, 'Tmax_mean', 1e-6)} / {num(r, 'Tmax_max', 1e-6)} "
             f"| {num(r, 'ratio', fmt='%.2f')} ± {num(r, 'ratioHalfWidth', fmt='%.2f')} "
             f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '%.2f')} "
             f"| {num(r, 'contactsPerStep', fmt='{:,.0f}')} |")
