@@ -387,8 +387,11 @@ def writeMarkdown(path, runs):
             f"| {num(r, 'ratio', fmt='%.2f')} ± {num(r, 'ratioHalfWidth', fmt='%.2f')} "
             f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '%.2f')} "
             f"| {num(r, 'contactsPerStep', fmt='{:,.0f}')} |")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
+    try:
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    except OSError as e:
+        sys.exit(f"plotStudy: --markdown {path}: {e.strerror}")
 
 
 def figures(d, runs, agg):
