@@ -273,7 +273,7 @@ int findContacts
                     double halfB;
                     edgeBall(B, b, midB, halfB);
                     // Balls apart: a lower bound of the distance above reach
-                    if ((midB - midA).norm() - halfB >= reachA) continue;
+                    if (ballBeyond(midA, midB, halfB, reachA)) continue;
                     const double lb = segmentDistanceLowerBound(p0, p1, wB[EB[b][0]], wB[EB[b][1]]);
                     if (lb < reach) writer.push(kEdgePair, a, b, lb);
                 }
