@@ -366,11 +366,11 @@ def main():
 
 def writeMarkdown(path, runs):
     """The table of every run, thinnest ice and lowest concentration first."""
-    def num(r, k, scale=1.0, fmt="%.3f"):
+    def num(r, k, scale=1.0, fmt="{:.3f}"):
         v = r.get(k, float("nan"))
         if not isinstance(v, (int, float)) or v != v:
             return "n/a"
-        return fmt.format(v*scale) if "{" in fmt else fmt % (v*scale)
+        return fmt.format(v*scale)
     lines = ["| h [m] | c | seed | floes | DEM step [s]; K | commit(s) "
              "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
              "| largest line tension: mean / max [MN] | load/drive ± 95 % "
@@ -379,13 +379,13 @@ def writeMarkdown(path, runs):
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
-            f"| {r['floes']} | {r['deltaT']:g}; {num(r, 'bodyForceInterval', fmt='%d')} "
+            f"| {r['floes']} | {r['deltaT']:g}; {num(r, 'bodyForceInterval', fmt='{:.0f}')} "
             f"| {r.get('commits', 'unknown')} "
             f"| **{num(r, 'Fh_mean', 1e-6)} ± {num(r, 'Fh_hw', 1e-6)}** "
-            f"| {num(r, 'Fh_p99', 1e-6, '%.2f')} | {num(r, 'Fh_max', 1e-6, '%.2f')} "
+            f"| {num(r, 'Fh_p99', 1e-6, '{:.2f}')} | {num(r, 'Fh_max', 1e-6, '{:.2f}')} "
             f"| {num(r, 'Tmax_mean', 1e-6)} / {num(r, 'Tmax_max', 1e-6)} "
-            f"| {num(r, 'ratio', fmt='%.2f')} ± {num(r, 'ratioHalfWidth', fmt='%.2f')} "
-            f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '%.2f')} "
+            f"| {num(r, 'ratio', fmt='{:.2f}')} ± {num(r, 'ratioHalfWidth', fmt='{:.2f}')} "
+            f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '{:.2f}')} "
             f"| {num(r, 'contactsPerStep', fmt='{:,.0f}')} |")
     try:
         with open(path, "w") as f:
