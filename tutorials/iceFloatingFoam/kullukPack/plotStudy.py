@@ -5,7 +5,7 @@
 #
 #   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
 #                        [--runs results/studyFull_study_runs.csv]
-#                        [--markdown FILE]
+#                        [--markdown FILE] [--hullMarkdown FILE]
 #
 # --runs CSV: rows of a study_runs.csv written before (a study that ran on
 # several machines or sessions whose point folders are gone): every row whose
@@ -40,7 +40,11 @@
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
 # DIR/forceBalance.png; --markdown FILE: the table of every run (the
-# kullukPack README's "Results so far") (with --convergence: DIR/convergence.csv and
+# kullukPack README's "Results so far"); --hullMarkdown FILE: what happens at the
+# hull, one row per thickness and concentration (means over the seeds: |F_h|,
+# F_z, F_z/|F_h|, F_z in lifts of fully submerged floes, floe-hull contacts,
+# floes within 60 m, pushed down, under the hull; the README's "What happens
+# at the hull") (with --convergence: DIR/convergence.csv and
 # DIR/convergence.png, the mean load against the domain's length and width).
 # -----------------------------------------------------------------------------
 import argparse
@@ -67,6 +71,11 @@ def t975(nu):
 BATCHES = 20
 WATERLINE_RADIUS = 35.0   # [m] the Kulluk's 70 m waterline (structureDict)
 NEAR_RADIUS = 60.0        # [m] around the axis: the cone and the ice at it
+# the lift of a fully submerged floe, A h (rho_w - rho_i) g: the densities of
+# the tutorial's constant/iceDEMProperties (materials ice, water)
+ICE_DENSITY = 900.0       # [kg/m3]
+WATER_DENSITY = 1025.0    # [kg/m3]
+GRAVITY = 9.81            # [m/s2]
 
 
 def readParameters(d):
@@ -302,6 +311,8 @@ def main():
     ap.add_argument("--runs", help="a study_runs.csv of points analysed before; a finished "
                     "folder in DIR replaces its row")
     ap.add_argument("--markdown", help="write the table of every run (markdown) to this file")
+    ap.add_argument("--hullMarkdown", help="write what happens at the hull, one row per "
+                    "thickness and concentration (markdown), to this file")
     a = ap.parse_args()
     runs = []
     for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
@@ -340,6 +351,9 @@ def main():
     if a.markdown:
         writeMarkdown(a.markdown, runs)
         print(f"plotStudy: the table of {len(runs)} runs -> {a.markdown}")
+    if a.hullMarkdown:
+        writeHullMarkdown(a.hullMarkdown, runs)
+        print(f"plotStudy: what happens at the hull -> {a.hullMarkdown}")
     if a.convergence:
         return convergence(a, runs)
 
@@ -392,6 +406,45 @@ def writeMarkdown(path, runs):
             f.write("\n".join(lines) + "\n")
     except OSError as e:
         sys.exit(f"plotStudy: --markdown {path}: {e.strerror}")
+
+
+def writeHullMarkdown(path, runs):
+    """What happens at the hull, one row per thickness and concentration: the
+    means over the seeds of the horizontal and vertical ice loads, F_z in
+    lifts of a fully submerged floe of the point's mean area, the floe-hull
+    contacts (every output step) and the floes near, pushed down and under
+    the hull (bodies.dat snapshots, hullCounts)."""
+    groups = {}
+    for r in runs:
+        groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
+
+    def mean(rs, k, scale=1.0, fmt="{:.3f}"):
+        v = [r.get(k, float("nan")) for r in rs]
+        v = [x for x in v if isinstance(x, (int, float))]
+        if not v or any(x != x for x in v):
+            return "n/a"
+        return fmt.format(scale*sum(v)/len(v))
+    lines = ["| h [m] | c | seeds | mean \\|F_h\\| [MN] | mean F_z [MN] | F_z / \\|F_h\\| "
+             "| F_z in submerged-floe lifts | floe-hull contacts | floes within 60 m "
+             "| pushed down | under the hull |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (h, c), rs in sorted(groups.items()):
+        for r in rs:
+            r["_FzOverFh"] = r["Fz_mean"]/r["Fh_mean"]
+            r["_lifts"] = r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY)
+        lines.append(
+            f"| {h:g} | {c*100:.0f} % | {len(rs)} | {mean(rs, 'Fh_mean', 1e-6)} "
+            f"| {mean(rs, 'Fz_mean', 1e-6, '{:.2f}')} | {mean(rs, '_FzOverFh', fmt='{:.1f}')} "
+            f"| {mean(rs, '_lifts', fmt='{:.1f}')} | {mean(rs, 'hullContacts_mean', fmt='{:.1f}')} "
+            f"| {mean(rs, 'floesNearHull', fmt='{:.1f}')} | {mean(rs, 'floesPushedDown', fmt='{:.2f}')} "
+            f"| {mean(rs, 'floesUnderHull', fmt='{:.2f}')} |")
+        for r in rs:
+            del r["_FzOverFh"], r["_lifts"]
+    try:
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    except OSError as e:
+        sys.exit(f"plotStudy: --hullMarkdown {path}: {e.strerror}")
 
 
 def figures(d, runs, agg):
