@@ -39,7 +39,9 @@
 # Across seeds (one row per thickness and concentration): the mean of each
 # statistic over the seeds and its 95 % interval t_{n-1} s/sqrt(n).
 # Writes DIR/study_runs.csv, DIR/study.csv, DIR/study.png,
-# DIR/forceBalance.png; --markdown FILE: the table of every run (the
+# DIR/forceBalance.png, DIR/trends.csv (per concentration with three or more
+# thicknesses: the exponent b of mean |F_h| ~ h^b, the least-squares slope of
+# the logarithms over every run, with its 95 % interval); --markdown FILE: the table of every run (the
 # kullukPack README's "Results so far"); --hullMarkdown FILE: what happens at the
 # hull, one row per thickness and concentration (means over the seeds: |F_h|,
 # F_z, F_z/|F_h|, F_z in lifts of fully submerged floes, floe-hull contacts,
@@ -374,8 +376,38 @@ def main():
         agg.append(row)
     writeCsv(os.path.join(a.dir, "study.csv"), agg, list(agg[0].keys()))
     print(f"plotStudy: {len(agg)} points -> {a.dir}/study.csv")
+    trends = thicknessExponents(runs)
+    if trends:
+        writeCsv(os.path.join(a.dir, "trends.csv"), trends, list(trends[0].keys()))
+        for t in trends:
+            print(f"plotStudy: c = {t['concentration']:g}: mean |F_h| ~ h^{t['exponent']:.2f}"
+                  f" +- {t['exponent_ci']:.2f} ({t['runs']} runs, h = {t['thicknesses']})")
+        print(f"plotStudy: the thickness exponents -> {a.dir}/trends.csv")
     figures(a.dir, runs, agg)
     return 0
+
+
+def thicknessExponents(runs, quantity="Fh_mean"):
+    """Per concentration with at least three thicknesses: the exponent b of
+    quantity ~ h^b, the least-squares slope of log(quantity) on log(h) over
+    every run (the seeds as replicates), with its 95 % interval
+    t_{n-2} se(b). A description of the grid's trend, not a law."""
+    out = []
+    for c in sorted({r["concentration"] for r in runs}):
+        rs = [r for r in runs if r["concentration"] == c and r[quantity] > 0]
+        hs = sorted({r["thickness"] for r in rs})
+        if len(hs) < 3:
+            continue
+        x = np.log([r["thickness"] for r in rs])
+        y = np.log([r[quantity] for r in rs])
+        n = len(x)
+        sxx = ((x - x.mean())**2).sum()
+        b = ((x - x.mean())*(y - y.mean())).sum()/sxx
+        resid = y - y.mean() - b*(x - x.mean())
+        se = math.sqrt((resid**2).sum()/(n - 2)/sxx)
+        out.append(dict(concentration=c, runs=n, thicknesses=" ".join(f"{h:g}" for h in hs),
+                        exponent=b, exponent_ci=t975(n - 2)*se))
+    return out
 
 
 def writeMarkdown(path, runs):
