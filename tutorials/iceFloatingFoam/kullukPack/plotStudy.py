@@ -6,6 +6,7 @@
 #   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
 #                        [--runs results/studyFull_study_runs.csv]
 #                        [--markdown FILE] [--hullMarkdown FILE]
+#                        [--pointsMarkdown FILE]
 #
 # --runs CSV: rows of a study_runs.csv written before (a study that ran on
 # several machines or sessions whose point folders are gone): every row whose
@@ -46,7 +47,9 @@
 # hull, one row per thickness and concentration (means over the seeds: |F_h|,
 # F_z, F_z/|F_h|, F_z in lifts of fully submerged floes, floe-hull contacts,
 # floes within 60 m, pushed down, under the hull; the README's "What happens
-# at the hull") (with --convergence: DIR/convergence.csv and
+# at the hull"); --pointsMarkdown FILE: study.csv as a table, one row per
+# thickness and concentration (the means over the seeds with their 95 %
+# t-intervals across the seeds) (with --convergence: DIR/convergence.csv and
 # DIR/convergence.png, the mean load against the domain's length and width).
 # -----------------------------------------------------------------------------
 import argparse
@@ -315,6 +318,8 @@ def main():
     ap.add_argument("--markdown", help="write the table of every run (markdown) to this file")
     ap.add_argument("--hullMarkdown", help="write what happens at the hull, one row per "
                     "thickness and concentration (markdown), to this file")
+    ap.add_argument("--pointsMarkdown", help="write the statistics across seeds, one row per "
+                    "thickness and concentration (markdown), to this file")
     a = ap.parse_args()
     runs = []
     for d in sorted(glob.glob(os.path.join(a.dir, "*"))):
@@ -376,6 +381,9 @@ def main():
         agg.append(row)
     writeCsv(os.path.join(a.dir, "study.csv"), agg, list(agg[0].keys()))
     print(f"plotStudy: {len(agg)} points -> {a.dir}/study.csv")
+    if a.pointsMarkdown:
+        writePointsMarkdown(a.pointsMarkdown, agg)
+        print(f"plotStudy: the statistics across seeds -> {a.pointsMarkdown}")
     trends = thicknessExponents(runs)
     if trends:
         writeCsv(os.path.join(a.dir, "trends.csv"), trends, list(trends[0].keys()))
@@ -385,6 +393,29 @@ def main():
         print(f"plotStudy: the thickness exponents -> {a.dir}/trends.csv")
     figures(a.dir, runs, agg)
     return 0
+
+
+def writePointsMarkdown(path, agg):
+    """study.csv as a table: per thickness and concentration the means over
+    the seeds of each run's statistics, ± their 95 % t-interval across the
+    seeds (n/a with one seed)."""
+    def pm(r, k, scale=1e-6, fmt="{:.3f}"):
+        v, ci = r[k]*scale, r[k + "_ci"]*scale
+        return fmt.format(v) + (" ± " + fmt.format(ci) if ci == ci else " ± n/a")
+    lines = ["| h [m] | c | seeds | mean \\|F_h\\| [MN] | std [MN] | P99 [MN] | max [MN] "
+             "| largest line tension: mean [MN] | its max [MN] | load/drive |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in agg:
+        lines.append(
+            f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seeds']} "
+            f"| **{pm(r, 'Fh_mean')}** | {pm(r, 'Fh_std')} | {pm(r, 'Fh_p99', fmt='{:.2f}')} "
+            f"| {pm(r, 'Fh_max', fmt='{:.2f}')} | {pm(r, 'Tmax_mean')} "
+            f"| {pm(r, 'Tmax_max')} | {pm(r, 'ratio', 1.0, '{:.2f}')} |")
+    try:
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    except OSError as e:
+        sys.exit(f"plotStudy: --pointsMarkdown {path}: {e.strerror}")
 
 
 def thicknessExponents(runs, quantity="Fh_mean"):
