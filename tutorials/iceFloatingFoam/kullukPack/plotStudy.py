@@ -395,6 +395,15 @@ def main():
     return 0
 
 
+def writeLines(path, option, lines):
+    """The lines of a markdown table into path (option names it in the error)."""
+    try:
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
+    except OSError as e:
+        sys.exit(f"plotStudy: {option} {path}: {e.strerror}")
+
+
 def writePointsMarkdown(path, agg):
     """study.csv as a table: per thickness and concentration the means over
     the seeds of each run's statistics, ± their 95 % t-interval across the
@@ -411,11 +420,7 @@ def writePointsMarkdown(path, agg):
             f"| **{pm(r, 'Fh_mean')}** | {pm(r, 'Fh_std')} | {pm(r, 'Fh_p99', fmt='{:.2f}')} "
             f"| {pm(r, 'Fh_max', fmt='{:.2f}')} | {pm(r, 'Tmax_mean')} "
             f"| {pm(r, 'Tmax_max')} | {pm(r, 'ratio', 1.0, '{:.2f}')} |")
-    try:
-        with open(path, "w") as f:
-            f.write("\n".join(lines) + "\n")
-    except OSError as e:
-        sys.exit(f"plotStudy: --pointsMarkdown {path}: {e.strerror}")
+    writeLines(path, "--pointsMarkdown", lines)
 
 
 def thicknessExponents(runs, quantity="Fh_mean"):
@@ -464,11 +469,7 @@ def writeMarkdown(path, runs):
             f"| {num(r, 'ratio', fmt='{:.2f}')} ± {num(r, 'ratioHalfWidth', fmt='{:.2f}')} "
             f"| {num(r, 'packSpeedX')} | {num(r, 'Fz_mean', 1e-6, '{:.2f}')} "
             f"| {num(r, 'contactsPerStep', fmt='{:,.0f}')} |")
-    try:
-        with open(path, "w") as f:
-            f.write("\n".join(lines) + "\n")
-    except OSError as e:
-        sys.exit(f"plotStudy: --markdown {path}: {e.strerror}")
+    writeLines(path, "--markdown", lines)
 
 
 def writeHullMarkdown(path, runs):
@@ -492,22 +493,16 @@ def writeHullMarkdown(path, runs):
              "| pushed down | under the hull |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
     for (h, c), rs in sorted(groups.items()):
-        for r in rs:
-            r["_FzOverFh"] = r["Fz_mean"]/r["Fh_mean"]
-            r["_lifts"] = r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY)
+        rs = [dict(r, FzOverFh=r["Fz_mean"]/r["Fh_mean"],
+                   lifts=r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY))
+              for r in rs]
         lines.append(
             f"| {h:g} | {c*100:.0f} % | {len(rs)} | {mean(rs, 'Fh_mean', 1e-6)} "
-            f"| {mean(rs, 'Fz_mean', 1e-6, '{:.2f}')} | {mean(rs, '_FzOverFh', fmt='{:.1f}')} "
-            f"| {mean(rs, '_lifts', fmt='{:.1f}')} | {mean(rs, 'hullContacts_mean', fmt='{:.1f}')} "
+            f"| {mean(rs, 'Fz_mean', 1e-6, '{:.2f}')} | {mean(rs, 'FzOverFh', fmt='{:.1f}')} "
+            f"| {mean(rs, 'lifts', fmt='{:.1f}')} | {mean(rs, 'hullContacts_mean', fmt='{:.1f}')} "
             f"| {mean(rs, 'floesNearHull', fmt='{:.1f}')} | {mean(rs, 'floesPushedDown', fmt='{:.2f}')} "
             f"| {mean(rs, 'floesUnderHull', fmt='{:.2f}')} |")
-        for r in rs:
-            del r["_FzOverFh"], r["_lifts"]
-    try:
-        with open(path, "w") as f:
-            f.write("\n".join(lines) + "\n")
-    except OSError as e:
-        sys.exit(f"plotStudy: --hullMarkdown {path}: {e.strerror}")
+    writeLines(path, "--hullMarkdown", lines)
 
 
 def figures(d, runs, agg):
