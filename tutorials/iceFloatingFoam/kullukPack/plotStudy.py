@@ -32,6 +32,12 @@
 #   below the water (pushed down the cone or under the hull), and of all
 #   floes within 60 m; the mean x velocity of all floes (packSpeedX: a
 #   jammed pack is at rest, a pack in free drift moves at about 0.4 m/s).
+#   From postProcessing/iceClearance/ (the points run since the function
+#   object exists): the net floes whose centre crossed the plane through the
+#   hull's axis normal to the drift after the transient, inside the 35 m
+#   waterline circle (clearUnder: under the hull) and out to 60 m
+#   (clearAround), the floes among them pushed under the water near the hull
+#   (clearSubmerged), their ice volumes [m3] and the hours counted.
 #   From postProcessing/iceLoad/ (every output step after the transient):
 #   the mean vertical ice load on the hull Fz_mean with its batch-means
 #   half-width (upward, > 0: the cone pushes floes down; a fully submerged
@@ -128,6 +134,39 @@ def readIceLoad(d):
                 v = [float(x) for x in line.split()]
                 rows[v[0]] = v
     return np.array([rows[t] for t in sorted(rows)]) if rows else None
+
+
+def clearanceCounts(d, tStart):
+    """The net floes (and ice volume) that passed the hull after tStart,
+    under it and around it, and of those the floes pushed under the water
+    near it, from postProcessing/iceClearance/<start>/clearance.dat of every
+    session (cumulative from each session's start: a session's rows up to
+    the next one's start, where the next one's counts begin), and the hours
+    they cover. NaN without the files (points run before the function
+    object)."""
+    files = sorted(glob.glob(os.path.join(d, "postProcessing/iceClearance/*/clearance.dat")),
+                   key=lambda f: float(f.split("/")[-2]))
+    keys = ["clearUnder", "clearAround", "clearSubmerged", "clearVolumeUnder",
+            "clearVolumeAround", "clearHours"]
+    out = dict.fromkeys(keys, float("nan"))
+    if not files:
+        return out
+    starts = [float(f.split("/")[-2]) for f in files]
+    total = np.zeros(5)
+    seconds = 0.0
+    for k, f in enumerate(files):
+        end = starts[k + 1] if k + 1 < len(files) else math.inf
+        rows = [[float(x) for x in l.split()[:6]] for l in open(f)
+                if not l.startswith("#") and l.strip()]
+        rows = [r for r in rows if r[0] <= end]
+        if not rows or rows[-1][0] <= tStart:
+            continue
+        before = [r for r in rows if r[0] <= tStart]
+        base = np.array(before[-1][1:6]) if before else np.zeros(5)
+        total += np.array(rows[-1][1:6]) - base
+        seconds += rows[-1][0] - max(starts[k], tStart)
+    out.update(zip(keys, list(total) + [seconds/3600.0]))
+    return out
 
 
 def batchHalfWidth(x, k=BATCHES):
@@ -260,6 +299,8 @@ def analyseRun(d, transient):
     r.setdefault("floes", floes)
     r["floesUnderHull"], r["floesPushedDown"], r["floesNearHull"], r["packSpeedX"] = \
         hullCounts(d, transient, floes, pieces)
+    # the floes that passed the hull, under and around it (iceClearance)
+    r.update(clearanceCounts(d, transient))
     # the vertical ice load on the hull (upward: the cone pushes floes down)
     # and the floe-hull contacts, every output step after the transient
     A = readIceLoad(d)

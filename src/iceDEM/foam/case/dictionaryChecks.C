@@ -403,18 +403,19 @@ void checkFunctionObjectControls(const Foam::dictionary& cd)
         return;
     }
     const char* file = "system/controlDict";
-    const char* where = "functions/*(type iceLoadStatistics)";
     for (const entry& fe : *fptr)
     {
-        if
-        (
-            !fe.isDict()
-         || fe.dict().getOrDefault<word>("type", word::null)
-         != "iceLoadStatistics"
-        )
+        if (!fe.isDict())
         {
             continue;
         }
+        const word type(fe.dict().getOrDefault<word>("type", word::null));
+        if (type != "iceLoadStatistics" && type != "iceClearance")
+        {
+            continue;
+        }
+        const std::string whereText("functions/*(type " + type + ")");
+        const char* where = whereText.c_str();
         const dictionary& d = fe.dict();
         for (const char* key : {"executeControl", "writeControl"})
         {
