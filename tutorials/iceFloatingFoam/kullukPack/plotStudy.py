@@ -406,13 +406,10 @@ def main():
         return convergence(a, runs)
 
     # across seeds
-    groups = {}
-    for r in runs:
-        groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
     agg = []
     qs = ["Fh_mean", "Fh_std", "Fh_max", "Fh_p99", "Tmax_mean", "Tmax_std", "Tmax_max",
           "Tmax_p99", "ratio", "Fz_mean"]
-    for (h, cc), rs in sorted(groups.items()):
+    for (h, cc), rs in byPoint(runs):
         row = dict(thickness=h, concentration=cc, seeds=len(rs))
         for q in qs:
             v = np.array([r[q] for r in rs])
@@ -434,6 +431,15 @@ def main():
         print(f"plotStudy: the thickness exponents -> {a.dir}/trends.csv")
     figures(a.dir, runs, agg)
     return 0
+
+
+def byPoint(runs):
+    """The runs grouped by thickness and concentration (the seeds of a
+    point), in order: [((h, c), [runs]), ...]"""
+    groups = {}
+    for r in runs:
+        groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
+    return sorted(groups.items())
 
 
 def writeLines(path, option, lines):
@@ -519,10 +525,6 @@ def writeHullMarkdown(path, runs):
     lifts of a fully submerged floe of the point's mean area, the floe-hull
     contacts (every output step) and the floes near, pushed down and under
     the hull (bodies.dat snapshots, hullCounts)."""
-    groups = {}
-    for r in runs:
-        groups.setdefault((r["thickness"], r["concentration"]), []).append(r)
-
     def mean(rs, k, scale=1.0, fmt="{:.3f}"):
         v = [r.get(k, float("nan")) for r in rs]
         v = [x for x in v if isinstance(x, (int, float))]
@@ -533,7 +535,7 @@ def writeHullMarkdown(path, runs):
              "| F_z in submerged-floe lifts | floe-hull contacts | floes within 60 m "
              "| pushed down | under the hull |",
              "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for (h, c), rs in sorted(groups.items()):
+    for (h, c), rs in byPoint(runs):
         rs = [dict(r, FzOverFh=r["Fz_mean"]/r["Fh_mean"],
                    lifts=r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY))
               for r in rs]
