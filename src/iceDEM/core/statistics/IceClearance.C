@@ -76,11 +76,12 @@ void IceClearance::sample
         const double rx = f.x - ax, ry = f.y - ay;
         const double s = rx*dx + ry*dy;
         const double l = -rx*dy + ry*dx;
-        const double r2 = rx*rx + ry*ry;
-        const bool isNear = r2 < nearR*nearR;
+        // hypot: no overflow for the far floes of a huge domain
+        const double r = std::hypot(rx, ry);
+        const bool isNear = r < nearR;
         const bool submerged = isNear && f.top < 0;
         if (isNear) ++now_.near;
-        if (r2 < under*under) ++now_.under;
+        if (r < under) ++now_.under;
         if (submerged) ++now_.submergedNear;
 
         auto it = tracks_.find(f.id);
