@@ -41,7 +41,7 @@ Foam::functionObjects::iceClearance::iceClearance
     centre_(Zero),
     transient_(0),
     connected_(false),
-    noCase_(false),
+    inactive_(false),
     refId_(-1),
     refIndex_(-1),
     axisInBody_(::iceDEM::Vec3::Zero())
@@ -61,7 +61,7 @@ void Foam::functionObjects::iceClearance::connect()
     connected_ = true;
     if (!time_.foundObject<iceDEMState>("iceDEMState"))
     {
-        noCase_ = true;
+        inactive_ = true;
         WarningInFunction
             << "Function object " << name() << ": no iceDEM case in this"
             << " run (no constant/iceDEMProperties): no ice clearance counts"
@@ -119,12 +119,15 @@ void Foam::functionObjects::iceClearance::connect()
     }
     if (refIndex_ < 0 && !centreGiven_)
     {
-        FatalIOErrorInFunction(dict_)
-            << "Function object " << name() << " in system/controlDict:"
-            << " no structure (every body is free) and no entry 'centre':"
-            << " the gate needs an axis, a fixed, prescribed or moored body"
-            << " ('structure') or a fixed point ('centre')" << nl
-            << exit(FatalIOError);
+        // A case run without its structure (a free-drift reference): as
+        // iceLoadStatistics, a warning, not a stop
+        inactive_ = true;
+        WarningInFunction
+            << "Function object " << name() << " in system/controlDict: no"
+            << " structure body (every body is free) and no entry 'centre':"
+            << " no gate, nothing is counted (give 'centre' for a fixed"
+            << " gate)" << endl;
+        return;
     }
 
     const ::iceDEM::Vec3 a =
@@ -313,7 +316,7 @@ bool Foam::functionObjects::iceClearance::execute()
     {
         connect();
     }
-    if (noCase_)
+    if (inactive_)
     {
         return true;
     }
@@ -366,7 +369,7 @@ bool Foam::functionObjects::iceClearance::write()
 
 bool Foam::functionObjects::iceClearance::end()
 {
-    if (counter_ && !noCase_)
+    if (counter_ && !inactive_)
     {
         const auto& n = counter_->counts();
         Info<< type() << ' ' << name() << ": after " << transient_ << " s,"
