@@ -6,6 +6,7 @@
 #include "iceClearance.H"
 #include "iceDEMState.H"
 #include "dictionaryChecks.H"
+#include "structureSelection.H"
 
 #include "addToRunTimeSelectionTable.H"
 
@@ -72,27 +73,21 @@ void Foam::functionObjects::iceClearance::connect()
         time_.lookupObject<iceDEMState>("iceDEMState").demCase();
     const ::iceDEM::World& w = c.world();
 
-    // The structure: selected bodies, or every body that is not free
-    const label nBodies = label(w.bodies().size());
+    // The structure: selected bodies, or every body that is not free; the
+    // first carries the axis
+    wordList unused;
     ::iceDEM::Vec3 centroid = ::iceDEM::Vec3::Zero();
     double volume = 0;
-    for (label i = 0; i < nBodies; ++i)
+    for
+    (
+        const label i
+      : iceDEMStatistics::selectStructure
+        (
+            c, structureGiven_, structureSel_, dict_, name(), unused
+        )
+    )
     {
         const ::iceDEM::Body& b = w.bodies()[i];
-        const bool selected =
-            structureGiven_ ? structureSel_.match(c.name(i)) : !b.isFree();
-        if (!selected)
-        {
-            continue;
-        }
-        if (b.isFree())
-        {
-            FatalIOErrorInFunction(dict_)
-                << "Entry 'structure' of function object " << name()
-                << " in system/controlDict selects body " << c.name(i)
-                << ", which is free: the structure must be fixed or"
-                << " prescribed bodies" << nl << exit(FatalIOError);
-        }
         if (refIndex_ < 0)
         {
             refIndex_ = i;
@@ -101,21 +96,6 @@ void Foam::functionObjects::iceClearance::connect()
         const double V = w.shapeOf(i).volume();
         centroid += V*b.x;
         volume += V;
-    }
-    if (structureGiven_)
-    {
-        for (const wordRe& r : structureSel_)
-        {
-            bool any = false;
-            for (label i = 0; i < nBodies; ++i) { any = any || r.match(c.name(i)); }
-            if (!any)
-            {
-                FatalIOErrorInFunction(dict_)
-                    << "Entry 'structure' of function object " << name()
-                    << " in system/controlDict: '" << r << "' matches no"
-                    << " body" << nl << exit(FatalIOError);
-            }
-        }
     }
     if (refIndex_ < 0 && !centreGiven_)
     {
@@ -202,16 +182,12 @@ bool Foam::functionObjects::iceClearance::read(const dictionary& dict)
     if (structureGiven_)
     {
         structureSel_ = dict.get<wordRes>("structure");
-        if (structureSel_.empty())
-        {
-            FatalIOErrorInFunction(dict)
-                << "Entry 'structure' of function object " << name()
-                << " in system/controlDict is an empty list: it would select"
-                << " nothing. Give names (or regular expressions), or omit"
-                << " the entry to select every body that is not free" << nl
-                << exit(FatalIOError);
-        }
     }
+    iceDEMStatistics::selectionNotEmpty
+    (
+        dict, name(), "structure", structureGiven_, structureSel_.size(),
+        "every body that is not free"
+    );
 
     settings_.underRadius = positive(dict, "underRadius");
     settings_.nearRadius = dict.found("nearRadius", keyType::LITERAL)

@@ -12,6 +12,7 @@ Description
 #include "iceLoadStatistics.H"
 #include "iceDEMState.H"
 #include "dictionaryChecks.H"
+#include "structureSelection.H"
 
 #include "addToRunTimeSelectionTable.H"
 
@@ -163,15 +164,10 @@ bool Foam::functionObjects::iceLoadStatistics::read(const dictionary& dict)
     };
     for (const auto& sel : selections)
     {
-        if (sel.given && sel.size == 0)
-        {
-            FatalIOErrorInFunction(dict)
-                << "Entry '" << sel.key << "' of function object " << name()
-                << " in system/controlDict is an empty list: it would select"
-                << " nothing. Give names (or regular expressions), or omit"
-                << " the entry to select " << sel.all << nl
-                << exit(FatalIOError);
-        }
+        iceDEMStatistics::selectionNotEmpty
+        (
+            dict, name(), sel.key, sel.given, sel.size, sel.all
+        );
     }
 
     // transient: a time [s] or 'auto'

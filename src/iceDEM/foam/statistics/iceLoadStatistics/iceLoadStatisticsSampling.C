@@ -11,6 +11,7 @@ Description
 
 #include "iceLoadStatistics.H"
 #include "iceDEMState.H"
+#include "structureSelection.H"
 
 #include "IOField.H"
 
@@ -113,44 +114,18 @@ void Foam::functionObjects::iceLoadStatistics::connect()
     const ::iceDEM::World& w = c.world();
 
     // The structure: selected bodies, or every body that is not free
-    const label nBodies = label(w.bodies().size());
     wordList unused;
-    for (label i = 0; i < nBodies; ++i)
+    for
+    (
+        const label i
+      : iceDEMStatistics::selectStructure
+        (
+            c, structureGiven_, structureSel_, dict_, name(), unused
+        )
+    )
     {
-        const word n = c.name(i);
-        const bool isFree = w.bodies()[i].isFree();
-        if (structureGiven_ ? structureSel_.match(n) : !isFree)
-        {
-            if (isFree)
-            {
-                FatalIOErrorInFunction(dict_)
-                    << "Entry 'structure' of function object " << name()
-                    << " selects body " << n << ", which is free: the"
-                    << " structure must be fixed or prescribed bodies"
-                    << nl << exit(FatalIOError);
-            }
-            acc_->bodies.push_back(i);
-            acc_->ids.push_back(w.bodies()[i].id);
-        }
-        else if (!isFree)
-        {
-            unused.append(n);
-        }
-    }
-    if (structureGiven_)
-    {
-        for (const wordRe& r : structureSel_)
-        {
-            bool any = false;
-            for (label i = 0; i < nBodies; ++i) { any = any || r.match(c.name(i)); }
-            if (!any)
-            {
-                FatalIOErrorInFunction(dict_)
-                    << "Entry 'structure' of function object " << name()
-                    << ": '" << r << "' matches no body. Bodies that are"
-                    << " not free: " << unused << nl << exit(FatalIOError);
-            }
-        }
+        acc_->bodies.push_back(i);
+        acc_->ids.push_back(w.bodies()[i].id);
     }
 
     // Walls: selected, or all
