@@ -97,11 +97,16 @@ def readParameters(d):
     return p
 
 
+def sessionFiles(d, pattern):
+    """The file of every session of the run in d, postProcessing/<object>/<start
+    time>/<file> (pattern: "<object>/*/<file>"), by start time: [(start, path)]"""
+    return sorted((float(f.split("/")[-2]), f)
+                  for f in glob.glob(os.path.join(d, "postProcessing", pattern)))
+
+
 def readSeries(d):
-    dirs = sorted(glob.glob(os.path.join(d, "postProcessing/iceLoadStatistics/*/series.dat")),
-                  key=lambda f: float(f.split("/")[-2]))
     header, parts = None, []
-    for f in dirs:
+    for _, f in sessionFiles(d, "iceLoadStatistics/*/series.dat"):
         names = None
         rows = []
         for line in open(f):
@@ -127,8 +132,7 @@ def readIceLoad(d):
     on the structure per output step: time Fx Fy Fz Mx My Mz contacts), later
     sessions replacing the rows they repeat, as readSeries."""
     rows = {}
-    for f in sorted(glob.glob(os.path.join(d, "postProcessing/iceLoad/*/iceLoad.dat")),
-                    key=lambda f: float(f.split("/")[-2])):
+    for _, f in sessionFiles(d, "iceLoad/*/iceLoad.dat"):
         for line in open(f):
             if not line.startswith("#") and line.strip():
                 v = [float(x) for x in line.split()]
@@ -144,18 +148,16 @@ def clearanceCounts(d, tStart):
     the next one's start, where the next one's counts begin), and the hours
     they cover. NaN without the files (points run before the function
     object)."""
-    files = sorted(glob.glob(os.path.join(d, "postProcessing/iceClearance/*/clearance.dat")),
-                   key=lambda f: float(f.split("/")[-2]))
+    files = sessionFiles(d, "iceClearance/*/clearance.dat")
     keys = ["clearUnder", "clearAround", "clearSubmerged", "clearVolumeUnder",
             "clearVolumeAround", "clearHours"]
     out = dict.fromkeys(keys, float("nan"))
     if not files:
         return out
-    starts = [float(f.split("/")[-2]) for f in files]
     total = np.zeros(5)
     seconds = 0.0
-    for k, f in enumerate(files):
-        end = starts[k + 1] if k + 1 < len(files) else math.inf
+    for k, (start, f) in enumerate(files):
+        end = files[k + 1][0] if k + 1 < len(files) else math.inf
         rows = [[float(x) for x in l.split()[:6]] for l in open(f)
                 if not l.startswith("#") and l.strip()]
         rows = [r for r in rows if r[0] <= end]
@@ -164,7 +166,7 @@ def clearanceCounts(d, tStart):
         before = [r for r in rows if r[0] <= tStart]
         base = np.array(before[-1][1:6]) if before else np.zeros(5)
         total += np.array(rows[-1][1:6]) - base
-        seconds += rows[-1][0] - max(starts[k], tStart)
+        seconds += rows[-1][0] - max(start, tStart)
     out.update(zip(keys, list(total) + [seconds/3600.0]))
     return out
 
@@ -191,18 +193,16 @@ def hullCounts(d, tStart, floes, pieces=0):
     (centre below -h/2: pushed down the cone or under the hull; a floating
     floe's centre is at about -0.38 h). Floes inserted by an inflow (ids
     after the pieces') count."""
-    files = sorted(glob.glob(os.path.join(d, "postProcessing/iceDEM/*/bodies.dat")),
-                   key=lambda f: float(f.split("/")[-2]))
+    files = sessionFiles(d, "iceDEM/*/bodies.dat")
     if not files:
         return float("nan"), float("nan"), float("nan"), float("nan")
     # every session's file (a restart writes postProcessing/iceDEM/<start>/),
     # an earlier session's rows kept only before the next one's start, as
     # readSeries (what a stopped session wrote past its last restart point
     # was run again)
-    starts = [float(f.split("/")[-2]) for f in files]
     rows = {}
-    for k, f in enumerate(files):
-        end = starts[k + 1] if k + 1 < len(files) else math.inf
+    for k, (_, f) in enumerate(files):
+        end = files[k + 1][0] if k + 1 < len(files) else math.inf
         for line in open(f):
             if not line.startswith("#") and line.strip():
                 v = line.split()
