@@ -42,9 +42,11 @@ def bodies(p):
 
 serial = steps(base/'serial'/'log.iceFloatingFoam')
 parallel = steps(base/'parallel'/'log.iceFloatingFoam')
+multi = steps(base/'multiRate'/'log.iceFloatingFoam')
+
 
 # 1. Per step: fluid = - floe, nothing lost
-for name, st, n in (('serial', serial, 20), ('parallel', parallel, 10)):
+def perStep(name, st, n):
     worst = max(s[2] for s in st.values()) if st else 1
     lost = max(mag(s[3]) for s in st.values()) if st else 1
     drag = min(mag(s[0]) for s in st.values()) if st else 0
@@ -52,10 +54,9 @@ for name, st, n in (('serial', serial, 20), ('parallel', parallel, 10)):
           f'{name}: {len(st)} steps, fluid source impulse = - floe drag impulse'
           f' (largest relative imbalance {worst:.2e}, smallest impulse {drag:.3e} N s, lost {lost:g})')
 
+
 # 2. The written source fields against the logged floe impulse
-for name, case, times, procs, st in (
-        ('serial', base/'serial', ['0.5', '1', '1.5', '2'], None, serial),
-        ('parallel', base/'parallel', ['1.5', '2'], 2, parallel)):
+def writtenSource(name, case, times, procs, st):
     for t in times:
         f = fluidImpulse(case, t, procs)
         J = st[round(float(t), 9)][0]
@@ -63,16 +64,29 @@ for name, case, times, procs, st in (
         check(err < 1e-10, f'{name}: t = {t}: sum of iceDragSource rho V deltaT '
               f'({f[0]:.6e} {f[1]:.3e} {f[2]:.3e}) = - floe drag impulse, relative {err:.2e}')
 
+
+#    and the floe's drag impulse between write times over its velocity
+#    change: the floe's mass in every interval (the logged impulse is the
+#    one the integrator applied)
+def masses(name, st, B):
+    m = []
+    for t0, t1 in ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 2.0)):
+        Jx = sum(s[0][0] for t, s in st.items() if t0 + 1e-9 < t <= t1 + 1e-9)
+        dv = B[(t1, 0)][5] - B[(t0, 0)][5]
+        m.append(Jx/dv)
+    spread = (max(m) - min(m))/abs(m[0])
+    check(spread < 1e-8 and m[0] > 0,
+          f'{name}: floe drag impulse / velocity change = {m[0]:.10g} kg in every write interval '
+          f'(relative spread {spread:.2e})')
+    return m[0]
+
+
+perStep('serial', serial, 20)
+perStep('parallel', parallel, 10)
+writtenSource('serial', base/'serial', ['0.5', '1', '1.5', '2'], None, serial)
+writtenSource('parallel', base/'parallel', ['1.5', '2'], 2, parallel)
 B = bodies(base/'serial'/'postProcessing'/'iceDEM'/'0'/'bodies.dat')
-masses = []
-for t0, t1 in ((0.0, 0.5), (0.5, 1.0), (1.0, 1.5), (1.5, 2.0)):
-    Jx = sum(s[0][0] for t, s in serial.items() if t0 + 1e-9 < t <= t1 + 1e-9)
-    dv = B[(t1, 0)][5] - B[(t0, 0)][5]
-    masses.append(Jx/dv)
-spread = (max(masses) - min(masses))/abs(masses[0])
-check(spread < 1e-8 and masses[0] > 0,
-      f'floe drag impulse / velocity change = {masses[0]:.10g} kg in every write interval '
-      f'(relative spread {spread:.2e})')
+mass = masses('serial', serial, B)
 
 # 3. Restart = uninterrupted, bit for bit (writePrecision 17: the ascii
 # entries of the uniform dictionaries, e.g. the sixDoF state, exact too)
@@ -103,5 +117,26 @@ dX = max(abs(P[(t, 0)][k] - B[(t, 0)][k]) for t in (1.5, 2.0) for k in range(2, 
 check(dX < 1e-6, f'parallel: floe position and velocity within 1e-6 of serial (max {dX:.2e})')
 dJ = max(mag([a - b for a, b in zip(parallel[t][0], serial[t][0])])/mag(serial[t][0]) for t in parallel)
 check(dJ < 1e-4, f'parallel: floe drag impulse per step within 1e-4 of serial (max relative {dJ:.2e})')
+
+# 5. The multi-rate step (bodyForceInterval 3): the same exchange, the
+# impulse the kicks gave the floe (outer steps straddle the flow steps and
+# the write times), restart = uninterrupted from inside an outer step
+perStep('multi-rate', multi, 20)
+writtenSource('multi-rate', base/'multiRate', ['0.5', '1', '1.5', '2'], None, multi)
+M = bodies(base/'multiRate'/'postProcessing'/'iceDEM'/'0'/'bodies.dat')
+mMulti = masses('multi-rate', multi, M)
+check(abs(mMulti - mass) < 1e-8*mass,
+      f'multi-rate: the same floe mass as the single rate ({mMulti:.10g} against {mass:.10g} kg)')
+for field in ('U', 'iceDragSource', 'iceDragCoefficient'):
+    d, m = maxdiff(internal(base/'multiRate'/'2'/field)[1],
+                   internal(base/'multiRateRestart'/'2'/field)[1])
+    check(d == 0, f'multi-rate restart: {field} at t = 2 bit for bit (max difference {d:.2e}, largest {m:.3e})')
+MR = bodies(base/'multiRateRestart'/'postProcessing'/'iceDEM'/'1'/'bodies.dat')
+dM = max(abs(x - y) for x, y in zip(MR[(2.0, 0)][2:8], M[(2.0, 0)][2:8]))
+check(dM == 0, f'multi-rate restart: floe position and velocity at t = 2 bit for bit (max difference {dM:.2e})')
+#    Against the single rate: the floe's drift velocity at t = 2 s
+du = abs(M[(2.0, 0)][5] - B[(2.0, 0)][5])
+print(f'      multi-rate - single rate: floe u_x at t = 2 s {M[(2.0, 0)][5]:.12g} against '
+      f'{B[(2.0, 0)][5]:.12g} m/s (difference {du:.2e})')
 
 sys.exit(0 if allPassed() else 1)

@@ -141,18 +141,6 @@ void Foam::iceDEMCase::checkBodyForceInterval() const
             << " less often" << nl << endl;
         return;
     }
-    if (dragType_ == "resolved")
-    {
-        // The two-way reaction and the flow sampling take the drag of
-        // every DEM step; with impulses every k steps their momentum
-        // exchange would need the schedule too
-        FatalIOErrorInFunction(d)
-            << "Entry 'bodyForceInterval' of constant/iceDEMProperties ("
-            << k << "): the multi-rate step is not available with drag"
-            << " type resolved yet (the flow's drag exchange follows every"
-            << " DEM step); use 1, or the empirical drag" << nl
-            << exit(FatalIOError);
-    }
     const scalar H = k*s.timeStep;
 
     // Resonance with the contacts (WorldStep.C): below 2/3 of the Hertz

@@ -188,7 +188,24 @@ Foam::iceDEMCoupling::iceDEMCoupling
         }
         if (reaction_ && cs.found("dragFaces"))
         {
-            // The face drag of the last evaluation before the write (the
+            // The kick forces are those of the state's multi-rate interval
+            // (a state without the entry: the single rate); World corrects
+            // its bodies' kicks to a new interval from the restart pose's
+            // forces, which the saved face drag cannot follow exactly
+            const label kState = cs.getOrDefault<label>("dragKickInterval", 1);
+            const label k = case_->world().bodyForceInterval();
+            if (kState != k)
+            {
+                FatalIOErrorInFunction(props)
+                    << "Entry 'bodyForceInterval' of constant/iceDEMProperties"
+                    << " (" << k << ") differs from the restart state's ("
+                    << kState << ") with two-way drag (drag { twoWay true; }):"
+                    << " the face drag returned to the flow would no longer be"
+                    << " the floes' drag impulse. Restart with bodyForceInterval "
+                    << kState << ", or start the run anew" << nl
+                    << exit(FatalIOError);
+            }
+            // The kick force of the last step before the write (the
             // restart's first evaluation samples a later flow field)
             flow_->setFaceDrag
             (
@@ -373,7 +390,13 @@ void Foam::iceDEMCoupling::solve()
             ++steps;
             if (reaction_)
             {
-                flow_->accumulate(hStep);
+                // The step evaluated the body forces if it ended an outer
+                // step of the multi-rate schedule (its phase is back at 0)
+                flow_->accumulate
+                (
+                    hStep,
+                    w.bodyForcePhase() == 0 ? w.bodyForceInterval() : 0
+                );
             }
 
             findPieces();   // inflow/outflow may have removed floes
@@ -450,6 +473,7 @@ void Foam::iceDEMCoupling::solve()
         setExact(cs, "dragFaceForces", F);
         setExact(cs, "dragFaceCoefficients", K);
         setExact(cs, "dragSourceInterval", reaction_->interval());
+        cs.set("dragKickInterval", label(w.bodyForceInterval()));
     }
 
     if (loadFile_.valid())

@@ -33,8 +33,6 @@ void Foam::resolvedFlowVelocity::faceForces
     for (size_t f = 0; f < fd.size(); ++f)
     {
         faceDrag& d = fd[f];
-        d.Fold = d.Fnew;
-        d.Kold = d.Knew;
         if (int(f) < nFaces)
         {
             d.Fnew = F[f];
@@ -49,16 +47,26 @@ void Foam::resolvedFlowVelocity::faceForces
 }
 
 
-void Foam::resolvedFlowVelocity::accumulate(scalar dt)
+void Foam::resolvedFlowVelocity::accumulate(scalar dt, label kick)
 {
+    // The kick force of this step: kick times the drag of its evaluation
+    // (the multi-rate step's impulse; 1 at the single rate), zero on a step
+    // that did not evaluate the body forces
+    const double k = double(kick);
     for (std::vector<faceDrag>& fd : faceDrag_)
     {
         for (faceDrag& d : fd)
         {
-            // Velocity Verlet: half a kick with the old force, half with
-            // the new one
-            d.J += (0.5*dt)*(d.Fold + d.Fnew);
-            d.KT += 0.5*dt*(d.Kold + d.Knew);
+            const ::iceDEM::Vec3 G =
+                kick > 0 ? ::iceDEM::Vec3(k*d.Fnew) : ::iceDEM::Vec3::Zero();
+            const double GK = kick > 0 ? k*d.Knew : 0;
+
+            // Velocity Verlet: half a kick with the last step's kick force,
+            // half with this step's
+            d.J += (0.5*dt)*(d.Fold + G);
+            d.KT += 0.5*dt*(d.Kold + GK);
+            d.Fold = G;
+            d.Kold = GK;
         }
     }
 }
@@ -162,8 +170,8 @@ void Foam::resolvedFlowVelocity::getFaceDrag
     {
         for (const faceDrag& d : fd)
         {
-            F[m] = vector(d.Fnew.x(), d.Fnew.y(), d.Fnew.z());
-            K[m] = d.Knew;
+            F[m] = vector(d.Fold.x(), d.Fold.y(), d.Fold.z());
+            K[m] = d.Kold;
             ++m;
         }
     }
@@ -191,8 +199,8 @@ void Foam::resolvedFlowVelocity::setFaceDrag
                     << " for " << sum(nFaces) << " faces" << nl
                     << exit(FatalError);
             }
-            d.Fnew = ::iceDEM::Vec3(F[m].x(), F[m].y(), F[m].z());
-            d.Knew = K[m];
+            d.Fold = ::iceDEM::Vec3(F[m].x(), F[m].y(), F[m].z());
+            d.Kold = K[m];
             ++m;
         }
     }
