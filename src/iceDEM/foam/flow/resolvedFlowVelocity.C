@@ -99,6 +99,8 @@ Foam::resolvedFlowVelocity::resolvedFlowVelocity
     Ucurrent_(nullptr),
     world_(nullptr),
     treeBuilt_(false),
+    cellTree_(),
+    treeEvent_(-1),
     twoWay_(false),
     unprepared_(0)
 {
@@ -281,8 +283,15 @@ void Foam::resolvedFlowVelocity::update()
         (void)mesh_.tetBasePtIs();
     }
     // The cell octree (and the tetrahedra it tests with) only when a walk
-    // needs it: building it costs more than a flow step's sampling
-    treeBuilt_ = false;
+    // needs it, and again only after the mesh moved (polyMesh::movePoints
+    // gives the points a new event number)
+    const regIOobject* meshPoints = mesh_.findObject<regIOobject>("points");
+    const label event = meshPoints ? meshPoints->eventNo() : -1;
+    if (event < 0 || event != treeEvent_)
+    {
+        treeBuilt_ = false;
+        treeEvent_ = event;
+    }
 
     // The walk's face planes: unit normals (zero for a degenerate face, which
     // then never decides) and a tolerance relative to the cell size

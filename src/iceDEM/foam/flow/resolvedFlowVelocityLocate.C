@@ -88,12 +88,35 @@ Foam::label Foam::resolvedFlowVelocity::locate
             if (!treeBuilt_.load(std::memory_order_relaxed))
             {
                 (void)mesh_.tetBasePtIs();
-                (void)mesh_.cellTree();
+                buildCellTree();
                 treeBuilt_.store(true, std::memory_order_release);
             }
         }
     }
-    return mesh_.cellTree().findInside(p);
+    return cellTree_->findInside(p);
+}
+
+
+void Foam::resolvedFlowVelocity::buildCellTree() const
+{
+    // The bounds and parameters of polyMesh::cellTree (OpenFOAM v1912)
+    treeBoundBox bb(mesh_.points());
+    Random rndGen(261782);
+    bb = bb.extend(rndGen, 1e-4);
+    bb.min() -= point(ROOTVSMALL, ROOTVSMALL, ROOTVSMALL);
+    bb.max() += point(ROOTVSMALL, ROOTVSMALL, ROOTVSMALL);
+
+    cellTree_.reset
+    (
+        new indexedOctree<treeDataCell>
+        (
+            treeDataCell(true, mesh_, polyMesh::CELL_TETS),
+            bb,
+            8,      // maxLevel
+            10,     // leafsize
+            5.0     // duplicity
+        )
+    );
 }
 
 
