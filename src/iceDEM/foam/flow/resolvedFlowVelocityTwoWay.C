@@ -57,9 +57,8 @@ void Foam::resolvedFlowVelocity::accumulate(scalar dt, label kick)
     {
         for (faceDrag& d : fd)
         {
-            const ::iceDEM::Vec3 G =
-                kick > 0 ? ::iceDEM::Vec3(k*d.Fnew) : ::iceDEM::Vec3::Zero();
-            const double GK = kick > 0 ? k*d.Knew : 0;
+            const ::iceDEM::Vec3 G = k*d.Fnew;
+            const double GK = k*d.Knew;
 
             // Velocity Verlet: half a kick with the last step's kick force,
             // half with this step's
