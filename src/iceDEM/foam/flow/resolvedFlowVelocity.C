@@ -9,6 +9,7 @@
 #include "World.H"
 #include "hydro/Drag.H"
 #include "hydro/WaterClip.H"
+#include "domain/Domain.H"
 
 #include "Pstream.H"
 #include "PstreamCombineReduceOps.H"
@@ -577,11 +578,13 @@ void Foam::resolvedFlowVelocity::prepare
         const int N = static_cast<int>(world.bodies().size());
         fits_.resize(N);
         faceFits_.resize(N);
+        fitOrigin_.resize(N);
         #pragma omp parallel for schedule(dynamic, 16) if(N >= minParallelBodies)
         for (int i = 0; i < N; ++i)
         {
             const size_t n = points_[i].size();
             fits_[i] = fit(i, 0, n);
+            fitOrigin_[i] = world.bodies()[i].x;
 
             // One fit per wet face (its points are contiguous)
             std::vector<linearFit>& ff = faceFits_[i];
@@ -606,6 +609,29 @@ void Foam::resolvedFlowVelocity::prepare
     (
         std::chrono::steady_clock::now() - started
     ).count();
+}
+
+
+::iceDEM::Vec3 Foam::resolvedFlowVelocity::wrapShift
+(
+    const ::iceDEM::Vec3& moved
+) const
+{
+    ::iceDEM::Vec3 s = ::iceDEM::Vec3::Zero();
+    const ::iceDEM::Domain* domain = world_->domain();
+    if (!domain)
+    {
+        return s;
+    }
+    for (int d = 0; d < 2; ++d)
+    {
+        if (domain->periodic(d))
+        {
+            const double L = domain->length(d);
+            s[d] = L*std::round(moved[d]/L);
+        }
+    }
+    return s;
 }
 
 
@@ -637,12 +663,12 @@ void Foam::resolvedFlowVelocity::velocity
         const linearFit* f =
             size_t(body) < fits_.size() && fits_[body].valid
           ? &fits_[body] : nullptr;
+        const ::iceDEM::Body& b = world_->bodies()[body];
         if (f && n > 0)
         {
             // The face the points lie on: the face plane (body frame)
             // nearest to the first point. A face that was dry at the
             // sampling takes the whole floe's fit.
-            const ::iceDEM::Body& b = world_->bodies()[body];
             static thread_local ::iceDEM::PolyhedronBuffer outerBuffer;
             const ::iceDEM::PolyhedronView P =
                 world_->shapeOf(body).outer(outerBuffer);
@@ -669,9 +695,14 @@ void Foam::resolvedFlowVelocity::velocity
         }
         if (f)
         {
+            // The periodic lattice vector the body wrapped by since the
+            // sampling (zero, exactly, if it did not: it moves a small
+            // fraction of a period in one flow step)
+            const ::iceDEM::Vec3 centre =
+                f->centre + wrapShift(b.x - fitOrigin_[body]);
             for (int k = 0; k < n; ++k)
             {
-                u[k] = f->mean + f->gradient*(points[k] - f->centre);
+                u[k] = f->mean + f->gradient*(points[k] - centre);
             }
         }
         else
