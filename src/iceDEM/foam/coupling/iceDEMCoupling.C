@@ -86,15 +86,16 @@ Foam::iceDEMCoupling::iceDEMCoupling
 
     const dictionary& props = case_->properties();
 
-    if (flow_ && case_->inflowOutflow())
+    if (flow_ && flow_->twoWay() && case_->inflowOutflow())
     {
-        // The resolved flow keeps per-floe caches by index (its samples,
-        // cells and fits), which removals and insertions would mix up
+        // The two-way impulses are kept per floe and face until the flow
+        // takes them: a floe removed in the sub-cycle would take its share
+        // out of the momentum balance
         FatalIOErrorInFunction(props)
             << "Entry 'domain' (type inflowOutflow) of constant/"
-            << "iceDEMProperties: not available yet with drag type resolved"
-            << " (its per-floe caches follow body indices); use the"
-            << " empirical drag or iceFloatingFoam -noFlow" << nl
+            << "iceDEMProperties: not available yet with drag { twoWay true; }"
+            << " (a removed floe's drag impulse would leave the momentum"
+            << " balance); use a periodic domain or twoWay false" << nl
             << exit(FatalIOError);
     }
 

@@ -17,6 +17,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -333,26 +334,95 @@ void Foam::resolvedFlowVelocity::update()
 }
 
 
+std::vector<char> Foam::resolvedFlowVelocity::followBodies
+(
+    const ::iceDEM::World& world
+) const
+{
+    const std::vector<::iceDEM::Body>& bodies = world.bodies();
+    const int N = static_cast<int>(bodies.size());
+    bool same = int(ids_.size()) == N;
+    for (int i = 0; same && i < N; ++i)
+    {
+        same = ids_[i] == bodies[i].id;
+    }
+    if (same)
+    {
+        return {};
+    }
+
+    // Old index of every id; the bodies keep their order, so one pass
+    std::vector<int> from(N, -1);
+    std::vector<char> fresh(N, 1);
+    {
+        std::size_t o = 0;
+        for (int i = 0; i < N; ++i)
+        {
+            std::size_t k = o;
+            while (k < ids_.size() && ids_[k] != bodies[i].id) ++k;
+            if (k < ids_.size())
+            {
+                from[i] = int(k);
+                fresh[i] = 0;
+                o = k + 1;
+            }
+        }
+    }
+
+    // Moves the entries of v to the new order (new bodies: default)
+    auto follow = [&from, N](auto& v)
+    {
+        using Vector = typename std::decay<decltype(v)>::type;
+        Vector w(N);
+        for (int i = 0; i < N; ++i)
+        {
+            if (from[i] >= 0 && std::size_t(from[i]) < v.size())
+            {
+                w[i] = std::move(v[from[i]]);
+            }
+        }
+        v.swap(w);
+    };
+    follow(points_);
+    follow(pointFaces_);
+    follow(values_);
+    follow(found_);
+    follow(cursor_);
+    follow(sampled_);
+    follow(areas_);
+    follow(cells_);
+    follow(hits_);
+    follow(fits_);
+    follow(faceFits_);
+    follow(fitOrigin_);
+    std::vector<label> hint(N, -1);
+    for (int i = 0; i < N; ++i)
+    {
+        if (from[i] >= 0 && std::size_t(from[i]) < hint_.size())
+        {
+            hint[i] = hint_[from[i]];
+        }
+    }
+    hint_.swap(hint);
+
+    ids_.resize(N);
+    for (int i = 0; i < N; ++i)
+    {
+        ids_[i] = bodies[i].id;
+    }
+    return fresh;
+}
+
+
 void Foam::resolvedFlowVelocity::sampleAll
 (
     const ::iceDEM::World& world,
-    const ::iceDEM::Drag& drag
+    const ::iceDEM::Drag& drag,
+    const std::vector<char>* only
 ) const
 {
     const int N = static_cast<int>(world.bodies().size());
-    if (int(hint_.size()) != N)
-    {
-        hint_.assign(N, -1);
-        points_.assign(N, {});
-        pointFaces_.assign(N, {});
-        values_.assign(N, {});
-        found_.assign(N, {});
-        cursor_.assign(N, 0);
-        sampled_.assign(N, 0);
-        areas_.assign(N, {});
-        cells_.assign(N, {});
-        hits_.assign(N, {});
-    }
+    auto chosen = [only](int i) { return !only || (*only)[i]; };
 
     // Periodic images of points outside the mesh (nullptr: none)
     const ::iceDEM::Domain* domain = world.domain();
@@ -364,6 +434,10 @@ void Foam::resolvedFlowVelocity::sampleAll
         reduction(+:images)
     for (int i = 0; i < N; ++i)
     {
+        if (!chosen(i))
+        {
+            continue;
+        }
         cursor_[i] = 0;
         std::vector<::iceDEM::Vec3>& pts = points_[i];
         if (!world.bodies()[i].isFree())
@@ -414,7 +488,7 @@ void Foam::resolvedFlowVelocity::sampleAll
     label total = 0;
     for (int i = 0; i < N; ++i)
     {
-        total += label(points_[i].size());
+        if (chosen(i)) total += label(points_[i].size());
     }
 
     if (Pstream::parRun())
@@ -434,6 +508,7 @@ void Foam::resolvedFlowVelocity::sampleAll
         label m = 0;
         for (int i = 0; i < N; ++i)
         {
+            if (!chosen(i)) continue;
             for (size_t k = 0; k < points_[i].size(); ++k)
             {
                 const bool hit = found_[i][k];
@@ -449,6 +524,7 @@ void Foam::resolvedFlowVelocity::sampleAll
         m = 0;
         for (int i = 0; i < N; ++i)
         {
+            if (!chosen(i)) continue;
             for (size_t k = 0; k < points_[i].size(); ++k)
             {
                 const scalar hits = buf[m + 3];
@@ -478,6 +554,7 @@ void Foam::resolvedFlowVelocity::sampleAll
     const ::iceDEM::Vec3 far(current_.x(), current_.y(), current_.z());
     for (int i = 0; i < N; ++i)
     {
+        if (!chosen(i)) continue;
         for (size_t k = 0; k < points_[i].size(); ++k)
         {
             if (!found_[i][k])
@@ -488,7 +565,7 @@ void Foam::resolvedFlowVelocity::sampleAll
         }
     }
 
-    ++stats_.evaluations;
+    if (!only) ++stats_.evaluations;
     stats_.points += total;
     stats_.outside += outside;
 }
@@ -548,6 +625,33 @@ Foam::resolvedFlowVelocity::linearFit Foam::resolvedFlowVelocity::fit
 }
 
 
+void Foam::resolvedFlowVelocity::fitBody
+(
+    const ::iceDEM::World& world,
+    int i
+) const
+{
+    const size_t n = points_[i].size();
+    fits_[i] = fit(i, 0, n);
+    fitOrigin_[i] = world.bodies()[i].x;
+
+    // One fit per wet face (its points are contiguous)
+    std::vector<linearFit>& ff = faceFits_[i];
+    ff.assign(world.shapeOf(i).outerFaceCount(), linearFit());
+    const std::vector<int>& face = pointFaces_[i];
+    for (size_t k = 0; k < n; )
+    {
+        size_t e = k + 1;
+        while (e < n && face[e] == face[k])
+        {
+            ++e;
+        }
+        ff[face[k]] = fit(i, k, e);
+        k = e;
+    }
+}
+
+
 void Foam::resolvedFlowVelocity::prepare
 (
     const ::iceDEM::World& world,
@@ -565,41 +669,30 @@ void Foam::resolvedFlowVelocity::prepare
         // Serial, before the threads of the force evaluation
         faceDrag_.resize(world.bodies().size());
     }
-    if (!samplePerDemStep_ && sampledThisStep_)
+
+    // Bodies removed and inserted since the last call (inflow/outflow;
+    // two-way is refused with it): the data follow their bodies, and new
+    // bodies are sampled at once if this flow step's fits were made
+    const std::vector<char> fresh = followBodies(world);
+    const int N = static_cast<int>(world.bodies().size());
+    const bool freshOnly = !samplePerDemStep_ && sampledThisStep_;
+    if (freshOnly && std::find(fresh.begin(), fresh.end(), 1) == fresh.end())
     {
         return;     // the fits of this flow step hold
     }
     const auto started = std::chrono::steady_clock::now();
 
-    sampleAll(world, drag);
+    sampleAll(world, drag, freshOnly ? &fresh : nullptr);
 
     if (!samplePerDemStep_)
     {
-        const int N = static_cast<int>(world.bodies().size());
         fits_.resize(N);
         faceFits_.resize(N);
         fitOrigin_.resize(N);
         #pragma omp parallel for schedule(dynamic, 16) if(N >= minParallelBodies)
         for (int i = 0; i < N; ++i)
         {
-            const size_t n = points_[i].size();
-            fits_[i] = fit(i, 0, n);
-            fitOrigin_[i] = world.bodies()[i].x;
-
-            // One fit per wet face (its points are contiguous)
-            std::vector<linearFit>& ff = faceFits_[i];
-            ff.assign(world.shapeOf(i).outerFaceCount(), linearFit());
-            const std::vector<int>& face = pointFaces_[i];
-            for (size_t k = 0; k < n; )
-            {
-                size_t e = k + 1;
-                while (e < n && face[e] == face[k])
-                {
-                    ++e;
-                }
-                ff[face[k]] = fit(i, k, e);
-                k = e;
-            }
+            if (!freshOnly || fresh[i]) fitBody(world, i);
         }
         world_ = &world;
         sampledThisStep_ = true;
