@@ -207,9 +207,15 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
     }
 
     // The generator's dictionary (createIceField's)
+    // (relative to the case, not to a processor directory in parallel)
     const fileName fdName =
         d.getOrDefault<fileName>("fieldDict", "system/createIceFieldDict");
-    const fileName fdPath = runTime_.path()/fdName;
+    fileName fdPath(fdName);
+    fdPath.expand();
+    if (!fdPath.isAbsolute())
+    {
+        fdPath = runTime_.globalPath()/fdPath;
+    }
     IFstream fdStream(fdPath);
     if (!fdStream.good())
     {
@@ -408,7 +414,8 @@ void Foam::iceDEMCase::startInflowOutflow()
     if (Pstream::master())
     {
         const fileName dir =
-            runTime_.path()/"postProcessing"/"inflowOutflow"/runTime_.timeName();
+            runTime_.globalPath()/"postProcessing"/"inflowOutflow"
+           /runTime_.timeName();
         mkDir(dir);
         inflowFile_.reset
         (
