@@ -686,9 +686,7 @@ void Foam::resolvedFlowVelocity::prepare
 
     if (!samplePerDemStep_)
     {
-        fits_.resize(N);
-        faceFits_.resize(N);
-        fitOrigin_.resize(N);
+        // (followBodies sized the per-body data)
         #pragma omp parallel for schedule(dynamic, 16) if(N >= minParallelBodies)
         for (int i = 0; i < N; ++i)
         {
