@@ -221,6 +221,7 @@ void World::preparePairs()
         S.entries.clear();
     }
     staged_.resize(nlist_->pairs().size());
+    nlist_->hasContacts().resize(nlist_->pairs().size());
     chunkCounts_.resize(maxThreads);
 }
 
@@ -261,6 +262,15 @@ void World::pairForces(double dtTangential)
             S.entries.insert(S.entries.end(), from, from + L.count);
         };
 
+        // Written only where it changes: most pairs' flags stay as they
+        // were, and their cache lines shared
+        unsigned char* hasContacts = nl.hasContacts().data();
+        auto flagContacts = [hasContacts](int k, const ContactPair& p)
+        {
+            const unsigned char flag = p.nContacts > 0;
+            if (hasContacts[k] != flag) hasContacts[k] = flag;
+        };
+
         int searched = 0;
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
@@ -284,6 +294,7 @@ void World::pairForces(double dtTangential)
                     const StoredFeatureList& L = oldLists[p.featureList];
                     stageList(p, L, oldEntries + L.firstEntry);
                 }
+                flagContacts(k, p);
                 continue;
             }
             staged_[k] = {thread, static_cast<int>(S.contacts.size())};
@@ -364,6 +375,7 @@ void World::pairForces(double dtTangential)
             {
                 p.featureList = -1;
             }
+            flagContacts(k, p);
         }
 
         // The new pools in pair order (independent of the thread count),
@@ -457,11 +469,38 @@ void World::sumBodyForces(double dtKick, int slowScale)
     const int begin = share.begin;
     const int end = share.end;
 
-    for (int b = begin; b < end; ++b)
+    // The contact sums (contactLoad's) over the pairs with contacts only:
+    // the others' forces are zero, and skipping them reads no pair that
+    // nothing touches (most of a drifting field's)
+    for (int b = begin; b < end && !nlist_; ++b)
     {
-        const ContactLoad c = contactLoad(b);
-        bodies_[b].force = c.force;
-        bodies_[b].torque = c.torque;
+        bodies_[b].force.setZero();
+        bodies_[b].torque.setZero();
+    }
+    const NeighbourList& nl = *nlist_;
+    const auto& pairs = nl.pairs();
+    const unsigned char* hasContacts = nlist_->hasContacts().data();
+    for (int b = begin; b < end && nlist_; ++b)
+    {
+        Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+        for (int k = nl.bodyBegin(b); k < nl.bodyEnd(b); ++k)
+        {
+            const int pk = nl.bodyPair(k);
+            if (!hasContacts[pk]) continue;
+            const ContactPair& p = pairs[pk];
+            if (p.i == b)
+            {
+                force -= p.forceOnJ;
+                torque += p.torqueOnI;
+            }
+            else
+            {
+                force += p.forceOnJ;
+                torque += p.torqueOnJ;
+            }
+        }
+        bodies_[b].force = force;
+        bodies_[b].torque = torque;
     }
 
     const bool models = !forceModels_.empty() && slowScale > 0;
