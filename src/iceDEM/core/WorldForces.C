@@ -471,23 +471,16 @@ void World::sumBodyForces(double dtKick, int slowScale)
 
     // The contact sums (contactLoad's) over the pairs with contacts only:
     // the others' forces are zero, and skipping them reads no pair that
-    // nothing touches (most of a drifting field's)
-    for (int b = begin; b < end && !nlist_; ++b)
-    {
-        bodies_[b].force.setZero();
-        bodies_[b].torque.setZero();
-    }
-    const NeighbourList& nl = *nlist_;
-    const auto& pairs = nl.pairs();
-    const unsigned char* hasContacts = nlist_->hasContacts().data();
-    for (int b = begin; b < end && nlist_; ++b)
+    // nothing touches (most of a drifting field's). The pair loop has just
+    // run (the list exists and its flags are this evaluation's)
+    for (int b = begin; b < end; ++b)
     {
         Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-        for (int k = nl.bodyBegin(b); k < nl.bodyEnd(b); ++k)
+        for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
         {
-            const int pk = nl.bodyPair(k);
-            if (!hasContacts[pk]) continue;
-            const ContactPair& p = pairs[pk];
+            const int pk = nlist_->bodyPair(k);
+            if (!nlist_->hasContacts()[pk]) continue;
+            const ContactPair& p = nlist_->pairs()[pk];
             if (p.i == b)
             {
                 force -= p.forceOnJ;
