@@ -469,31 +469,11 @@ void World::sumBodyForces(double dtKick, int slowScale)
     const int begin = share.begin;
     const int end = share.end;
 
-    // The contact sums (contactLoad's) over the pairs with contacts only:
-    // the others' forces are zero, and skipping them reads no pair that
-    // nothing touches (most of a drifting field's). The pair loop has just
-    // run (the list exists and its flags are this evaluation's)
     for (int b = begin; b < end; ++b)
     {
-        Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-        for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
-        {
-            const int pk = nlist_->bodyPair(k);
-            if (!nlist_->hasContacts()[pk]) continue;
-            const ContactPair& p = nlist_->pairs()[pk];
-            if (p.i == b)
-            {
-                force -= p.forceOnJ;
-                torque += p.torqueOnI;
-            }
-            else
-            {
-                force += p.forceOnJ;
-                torque += p.torqueOnJ;
-            }
-        }
-        bodies_[b].force = force;
-        bodies_[b].torque = torque;
+        const ContactLoad c = contactLoad(b);
+        bodies_[b].force = c.force;
+        bodies_[b].torque = c.torque;
     }
 
     const bool models = !forceModels_.empty() && slowScale > 0;
@@ -601,9 +581,16 @@ ContactLoad World::contactLoad(int b) const
     ContactLoad c;
     if (!nlist_) return c;
     const auto& pairs = nlist_->pairs();
+    // Only the pairs with contacts carry a force: where the pair loop's
+    // flags are those of these pairs, the others are not read (most of a
+    // drifting field's; the same sums in the same order)
+    const std::vector<unsigned char>& flags = nlist_->hasContacts();
+    const bool flagged = flags.size() == pairs.size();
     for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
     {
-        const ContactPair& p = pairs[nlist_->bodyPair(k)];
+        const int pk = nlist_->bodyPair(k);
+        if (flagged && !flags[pk]) continue;
+        const ContactPair& p = pairs[pk];
         if (p.i == b)
         {
             c.force -= p.forceOnJ;

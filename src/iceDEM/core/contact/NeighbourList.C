@@ -326,6 +326,7 @@ void NeighbourList::build(const World& world)
         }
     }
     pairs_.swap(next);
+    hasContacts_.clear();
 
     // Per-body pair lists
     bodyStart_.assign(N + 1, 0);
