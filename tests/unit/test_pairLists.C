@@ -341,3 +341,29 @@ TEST(candidateLists, noSkinMeansNoList)
     findContacts(A.view(), B.view(), none, axis, found, maxOut, &list);
     EXPECT_EQ(list.count, -1);
 }
+
+
+TEST(candidateLists, fieldWithListsFollowsTheFullSearchBitForBit)
+{
+    // A walled field of colliding prisms with the lists (the default skin)
+    // and without (featureSkin 0): the same trajectory to the bit. Not
+    // vacuous: the pool of lists, which keeps a list where it is until its
+    // pair replaces or drops it, is compacted more than once (garbage of
+    // replaced lists and of pairs the neighbour list dropped)
+    auto full = makeField(300, 17, 0);
+    auto listed = makeField(300, 17);
+    int touching = 0;
+    while (listed->time() < 3.0)
+    {
+        listed->step();
+        touching = std::max(touching, listed->contactPairCount());
+    }
+    full->advanceTo(listed->time());
+    std::cout << "touching pairs up to " << touching << ", list pool compactions "
+        << listed->featureListCompactions() << ", neighbour-list builds "
+        << listed->neighbourListBuilds() << std::endl;
+    EXPECT_GT(touching, 20);
+    EXPECT_GT(listed->featureListCompactions(), 1);
+    EXPECT_EQ(full->featureListCompactions(), 0);
+    expectSameState(*full, *listed);
+}

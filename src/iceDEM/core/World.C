@@ -488,12 +488,14 @@ int World::contactPairCount() const
 std::size_t World::contactStateBytes() const
 {
     std::size_t n = nlist_ ? nlist_->bytes() : 0;
-    n += staged_.capacity()*sizeof(staged_[0]);
+    n += staged_.capacity()*sizeof(staged_[0])
+       + newLists_.capacity()*sizeof(newLists_[0]);
     for (const PairScratch& S : scratch_)
     {
         n += S.contacts.capacity()*sizeof(StoredContact)
            + S.lists.capacity()*sizeof(StoredFeatureList)
-           + S.entries.capacity()*sizeof(FeaturePairEntry);
+           + S.entries.capacity()*sizeof(FeaturePairEntry)
+           + S.newLists.capacity()*sizeof(S.newLists[0]);
     }
     return n;
 }

@@ -219,6 +219,7 @@ void World::preparePairs()
         S.contacts.clear();
         S.lists.clear();
         S.entries.clear();
+        S.newLists.clear();
     }
     staged_.resize(nlist_->pairs().size());
     nlist_->hasContacts().resize(nlist_->pairs().size());
@@ -247,17 +248,17 @@ void World::pairForces(double dtTangential)
         const StoredFeatureList* oldLists = nl.featureLists().data();
         const FeaturePairEntry* oldEntries = nl.listEntries().data();
 
-        // A pair's new feature-pair list into this thread's scratch; until
-        // the pool pass, the pair's featureList is its index there
+        // A pair's new feature-pair list into this thread's scratch, until
+        // the pool pass appends it (the kept lists stay where they are)
         auto stageList = [&S]
         (
-            ContactPair& p,
+            int k,
             StoredFeatureList L,
             const FeaturePairEntry* from
         )
         {
-            p.featureList = static_cast<int>(S.lists.size());
             L.firstEntry = static_cast<int>(S.entries.size());
+            S.newLists.push_back({k, static_cast<int>(S.lists.size())});
             S.lists.push_back(L);
             S.entries.insert(S.entries.end(), from, from + L.count);
         };
@@ -288,12 +289,6 @@ void World::pairForces(double dtTangential)
             if (certifiedApart(p))
             {
                 if (p.nContacts > 0) clearPairForces(p);
-                if (p.featureList >= 0)
-                {
-                    staged_[k] = {thread, 0};
-                    const StoredFeatureList& L = oldLists[p.featureList];
-                    stageList(p, L, oldEntries + L.firstEntry);
-                }
                 flagContacts(k, p);
                 continue;
             }
@@ -362,41 +357,38 @@ void World::pairForces(double dtTangential)
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
 
-            if (list.count >= 0)
+            // A list built by this search is staged; a held one stays in
+            // the pool as it is; a dropped one is left there as garbage
+            if (list.count >= 0 && list.entries == listBuffer)
             {
                 StoredFeatureList L;
                 L.t = list.t;
                 L.Q = list.Q;
                 L.limit = list.limit;
                 L.count = list.count;
-                stageList(p, L, list.entries);
+                stageList(k, L, list.entries);
             }
-            else if (p.featureList >= 0)
+            else if (list.count < 0)
             {
                 p.featureList = -1;
             }
             flagContacts(k, p);
         }
 
-        // The new pools in pair order (independent of the thread count),
-        // written in parallel: each thread takes a static chunk of the
-        // pairs, whose offsets in the pools are the sums over the chunks
+        // The contacts' pool in pair order (independent of the thread
+        // count), written in parallel: each thread takes a static chunk of
+        // the pairs, whose offsets in the pool are the sums over the chunks
         // before it. The pair loop's barrier made every count visible; the
-        // pools' sizes are the scratch totals, so one thread sizes them
-        // while the others count their chunks
+        // pool's size is the scratch total, so one thread sizes it, and
+        // appends the new feature-pair lists, while the others count their
+        // chunks
         #pragma omp master
         {
-            std::size_t nContacts = 0, nLists = 0, nEntries = 0;
-            for (const PairScratch& T : scratch_)
-            {
-                nContacts += T.contacts.size();
-                nLists += T.lists.size();
-                nEntries += T.entries.size();
-            }
+            std::size_t nContacts = 0;
+            for (const PairScratch& T : scratch_) nContacts += T.contacts.size();
             nl.contacts().resize(nContacts);
-            nl.featureLists().resize(nLists);
-            nl.listEntries().resize(nEntries);
             contactCount_ = static_cast<int>(nContacts);
+            appendNewLists();
         }
 
         PoolCounts& mine = chunkCounts_[thread];
@@ -404,11 +396,7 @@ void World::pairForces(double dtTangential)
         mine.searched = searched;
         for (int k = share.begin; k < share.end; ++k)
         {
-            const ContactPair& p = pairs[k];
-            mine.contacts += p.nContacts;
-            if (p.featureList < 0) continue;
-            ++mine.lists;
-            mine.entries += scratch_[staged_[k][0]].lists[p.featureList].count;
+            mine.contacts += pairs[k].nContacts;
         }
         #pragma omp barrier
 
@@ -418,41 +406,85 @@ void World::pairForces(double dtTangential)
             for (int t = 0; t < share.nThreads; ++t) searchedPairs_ += chunkCounts_[t].searched;
         }
 
-        PoolCounts offset;
-        for (int t = 0; t < thread; ++t)
-        {
-            offset.contacts += chunkCounts_[t].contacts;
-            offset.lists += chunkCounts_[t].lists;
-            offset.entries += chunkCounts_[t].entries;
-        }
+        int offset = 0;
+        for (int t = 0; t < thread; ++t) offset += chunkCounts_[t].contacts;
 
         // No barrier after this: what follows in the step (body sums) reads
         // the pairs' forces, not the pools. A pair's header is written only
-        // where it changes (a pair without contacts or list keeps its line
-        // shared with the thread that reads it next)
+        // where it changes (a pair without contacts keeps its line shared
+        // with the thread that reads it next)
         for (int k = share.begin; k < share.end; ++k)
         {
             ContactPair& p = pairs[k];
-            if (p.firstContact != offset.contacts) p.firstContact = offset.contacts;
+            if (p.firstContact != offset) p.firstContact = offset;
             if (p.nContacts > 0)
             {
                 const StoredContact* from =
                     scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
                 std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
-                offset.contacts += p.nContacts;
+                offset += p.nContacts;
             }
-
-            if (p.featureList < 0) continue;
-            const PairScratch& T = scratch_[staged_[k][0]];
-            const int l = p.featureList;
-            p.featureList = offset.lists++;
-            StoredFeatureList& L = nl.featureLists()[p.featureList];
-            L = T.lists[l];
-            const FeaturePairEntry* fromEntry = T.entries.data() + L.firstEntry;
-            std::copy(fromEntry, fromEntry + L.count, nl.listEntries().data() + offset.entries);
-            L.firstEntry = offset.entries;
-            offset.entries += L.count;
         }
+    }
+}
+
+
+void World::appendNewLists()
+{
+    NeighbourList& nl = *nlist_;
+    auto& pairs = nl.pairs();
+    auto& lists = nl.featureLists();
+    auto& entries = nl.listEntries();
+
+    // The lists built in this evaluation, in pair order (so the pools'
+    // layout does not depend on the number of threads either)
+    newLists_.clear();
+    for (int t = 0; t < int(scratch_.size()); ++t)
+    {
+        for (const auto& kl : scratch_[t].newLists)
+        {
+            newLists_.push_back({kl[0], t, kl[1]});
+        }
+    }
+    std::sort(newLists_.begin(), newLists_.end());
+
+    // Compacted, in pair order, once the garbage (replaced and dropped
+    // lists, lists of pairs a build removed) outweighs what is kept
+    if (entries.size() > 2*listEntriesAtCompaction_ + FeaturePairList::capacity)
+    {
+        std::vector<StoredFeatureList> keptLists;
+        std::vector<FeaturePairEntry> keptEntries;
+        keptLists.reserve(lists.size());
+        keptEntries.reserve(entries.size());
+        std::size_t next = 0;
+        for (int k = 0; k < int(pairs.size()); ++k)
+        {
+            ContactPair& p = pairs[k];
+            const bool replaced = next < newLists_.size() && newLists_[next][0] == k;
+            if (replaced) ++next;
+            if (p.featureList < 0 || replaced) continue;
+            StoredFeatureList L = lists[p.featureList];
+            const FeaturePairEntry* from = entries.data() + L.firstEntry;
+            L.firstEntry = static_cast<int>(keptEntries.size());
+            keptEntries.insert(keptEntries.end(), from, from + L.count);
+            p.featureList = static_cast<int>(keptLists.size());
+            keptLists.push_back(L);
+        }
+        lists.swap(keptLists);
+        entries.swap(keptEntries);
+        listEntriesAtCompaction_ = entries.size();
+        ++listCompactions_;
+    }
+
+    for (const auto& n : newLists_)
+    {
+        const PairScratch& T = scratch_[n[1]];
+        StoredFeatureList L = T.lists[n[2]];
+        const FeaturePairEntry* from = T.entries.data() + L.firstEntry;
+        L.firstEntry = static_cast<int>(entries.size());
+        entries.insert(entries.end(), from, from + L.count);
+        pairs[n[0]].featureList = static_cast<int>(lists.size());
+        lists.push_back(L);
     }
 }
 
