@@ -452,26 +452,9 @@ void World::appendNewLists()
     // lists, lists of pairs a build removed) outweighs what is kept
     if (entries.size() > 2*listEntriesAtCompaction_ + FeaturePairList::capacity)
     {
-        std::vector<StoredFeatureList> keptLists;
-        std::vector<FeaturePairEntry> keptEntries;
-        keptLists.reserve(lists.size());
-        keptEntries.reserve(entries.size());
-        std::size_t next = 0;
-        for (int k = 0; k < int(pairs.size()); ++k)
-        {
-            ContactPair& p = pairs[k];
-            const bool replaced = next < newLists_.size() && newLists_[next][0] == k;
-            if (replaced) ++next;
-            if (p.featureList < 0 || replaced) continue;
-            StoredFeatureList L = lists[p.featureList];
-            const FeaturePairEntry* from = entries.data() + L.firstEntry;
-            L.firstEntry = static_cast<int>(keptEntries.size());
-            keptEntries.insert(keptEntries.end(), from, from + L.count);
-            p.featureList = static_cast<int>(keptLists.size());
-            keptLists.push_back(L);
-        }
-        lists.swap(keptLists);
-        entries.swap(keptEntries);
+        // The replaced lists are left out (the new ones follow)
+        for (const auto& n : newLists_) pairs[n[0]].featureList = -1;
+        nl.compactLists();
         listEntriesAtCompaction_ = entries.size();
         ++listCompactions_;
     }

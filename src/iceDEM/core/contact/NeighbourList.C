@@ -356,12 +356,35 @@ void NeighbourList::build(const World& world)
 }
 
 
+void NeighbourList::compactLists()
+{
+    spareLists_.clear();
+    spareEntries_.clear();
+    spareLists_.reserve(lists_.size());
+    spareEntries_.reserve(listEntries_.size());
+    for (ContactPair& p : pairs_)
+    {
+        if (p.featureList < 0) continue;
+        StoredFeatureList L = lists_[p.featureList];
+        const FeaturePairEntry* from = listEntries_.data() + L.firstEntry;
+        L.firstEntry = static_cast<int>(spareEntries_.size());
+        spareEntries_.insert(spareEntries_.end(), from, from + L.count);
+        p.featureList = static_cast<int>(spareLists_.size());
+        spareLists_.push_back(L);
+    }
+    lists_.swap(spareLists_);
+    listEntries_.swap(spareEntries_);
+}
+
+
 std::size_t NeighbourList::bytes() const
 {
     return pairs_.capacity()*sizeof(ContactPair)
         + contacts_.capacity()*sizeof(StoredContact)
         + lists_.capacity()*sizeof(StoredFeatureList)
         + listEntries_.capacity()*sizeof(FeaturePairEntry)
+        + spareLists_.capacity()*sizeof(StoredFeatureList)
+        + spareEntries_.capacity()*sizeof(FeaturePairEntry)
         + (bodyStart_.capacity() + bodyPairs_.capacity())*sizeof(int);
 }
 
