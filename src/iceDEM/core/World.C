@@ -315,6 +315,7 @@ void World::initialise(bool restart)
     vertexOffset_.clear();
     updateWorldVertices();
     nlist_ = std::make_unique<NeighbourList>(skin);
+    listEntriesAtCompaction_ = 0;
     nlist_->build(*this);
 
     // Overlaps at start: intersecting cores are an error, but between two
