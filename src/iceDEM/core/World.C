@@ -496,7 +496,7 @@ std::size_t World::contactStateBytes() const
         n += S.contacts.capacity()*sizeof(StoredContact)
            + S.lists.capacity()*sizeof(StoredFeatureList)
            + S.entries.capacity()*sizeof(FeaturePairEntry)
-           + S.newLists.capacity()*sizeof(S.newLists[0]);
+           + S.listPairs.capacity()*sizeof(int);
     }
     return n;
 }

@@ -219,7 +219,7 @@ void World::preparePairs()
         S.contacts.clear();
         S.lists.clear();
         S.entries.clear();
-        S.newLists.clear();
+        S.listPairs.clear();
     }
     staged_.resize(nlist_->pairs().size());
     nlist_->hasContacts().resize(nlist_->pairs().size());
@@ -243,7 +243,7 @@ void World::pairForces(double dtTangential)
 
         FoundContact found[maxContactsPerPair];
         FeaturePairEntry listBuffer[FeaturePairList::capacity];
-        // The pools of the last evaluation, read only in this loop
+        // The pools as the last evaluation left them, read only in this loop
         const StoredContact* oldContacts = nl.contacts().data();
         const StoredFeatureList* oldLists = nl.featureLists().data();
         const FeaturePairEntry* oldEntries = nl.listEntries().data();
@@ -258,7 +258,7 @@ void World::pairForces(double dtTangential)
         )
         {
             L.firstEntry = static_cast<int>(S.entries.size());
-            S.newLists.push_back({k, static_cast<int>(S.lists.size())});
+            S.listPairs.push_back(k);
             S.lists.push_back(L);
             S.entries.insert(S.entries.end(), from, from + L.count);
         };
@@ -433,41 +433,40 @@ void World::appendNewLists()
 {
     NeighbourList& nl = *nlist_;
     auto& pairs = nl.pairs();
-    auto& lists = nl.featureLists();
-    auto& entries = nl.listEntries();
 
     // The lists built in this evaluation, in pair order (so the pools'
     // layout does not depend on the number of threads either)
     newLists_.clear();
     for (int t = 0; t < int(scratch_.size()); ++t)
     {
-        for (const auto& kl : scratch_[t].newLists)
+        const std::vector<int>& listPairs = scratch_[t].listPairs;
+        for (int l = 0; l < int(listPairs.size()); ++l)
         {
-            newLists_.push_back({kl[0], t, kl[1]});
+            newLists_.push_back({listPairs[l], t, l});
         }
     }
     std::sort(newLists_.begin(), newLists_.end());
 
     // Compacted, in pair order, once the garbage (replaced and dropped
     // lists, lists of pairs a build removed) outweighs what is kept
-    if (entries.size() > 2*listEntriesAtCompaction_ + FeaturePairList::capacity)
+    if
+    (
+        nl.listEntries().size()
+      > 2*listEntriesAtCompaction_ + FeaturePairList::capacity
+    )
     {
         // The replaced lists are left out (the new ones follow)
         for (const auto& n : newLists_) pairs[n[0]].featureList = -1;
         nl.compactLists();
-        listEntriesAtCompaction_ = entries.size();
+        listEntriesAtCompaction_ = nl.listEntries().size();
         ++listCompactions_;
     }
 
     for (const auto& n : newLists_)
     {
         const PairScratch& T = scratch_[n[1]];
-        StoredFeatureList L = T.lists[n[2]];
-        const FeaturePairEntry* from = T.entries.data() + L.firstEntry;
-        L.firstEntry = static_cast<int>(entries.size());
-        entries.insert(entries.end(), from, from + L.count);
-        pairs[n[0]].featureList = static_cast<int>(lists.size());
-        lists.push_back(L);
+        const StoredFeatureList& L = T.lists[n[2]];
+        nl.appendList(pairs[n[0]], L, T.entries.data() + L.firstEntry);
     }
 }
 

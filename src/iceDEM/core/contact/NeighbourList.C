@@ -356,24 +356,36 @@ void NeighbourList::build(const World& world)
 }
 
 
+void NeighbourList::appendList
+(
+    ContactPair& p,
+    StoredFeatureList L,
+    const FeaturePairEntry* entries
+)
+{
+    L.firstEntry = static_cast<int>(listEntries_.size());
+    listEntries_.insert(listEntries_.end(), entries, entries + L.count);
+    p.featureList = static_cast<int>(lists_.size());
+    lists_.push_back(L);
+}
+
+
 void NeighbourList::compactLists()
 {
-    spareLists_.clear();
-    spareEntries_.clear();
-    spareLists_.reserve(lists_.size());
-    spareEntries_.reserve(listEntries_.size());
+    // The pools become the spares, read while the kept lists are appended
+    // to the emptied spares of the last compaction
+    lists_.swap(spareLists_);
+    listEntries_.swap(spareEntries_);
+    lists_.clear();
+    listEntries_.clear();
+    lists_.reserve(spareLists_.size());
+    listEntries_.reserve(spareEntries_.size());
     for (ContactPair& p : pairs_)
     {
         if (p.featureList < 0) continue;
-        StoredFeatureList L = lists_[p.featureList];
-        const FeaturePairEntry* from = listEntries_.data() + L.firstEntry;
-        L.firstEntry = static_cast<int>(spareEntries_.size());
-        spareEntries_.insert(spareEntries_.end(), from, from + L.count);
-        p.featureList = static_cast<int>(spareLists_.size());
-        spareLists_.push_back(L);
+        const StoredFeatureList& L = spareLists_[p.featureList];
+        appendList(p, L, spareEntries_.data() + L.firstEntry);
     }
-    lists_.swap(spareLists_);
-    listEntries_.swap(spareEntries_);
 }
 
 
