@@ -285,6 +285,79 @@ TEST(periodic, collisionAcrossASideFollowsTheSameCollisionInside)
 }
 
 
+TEST(periodic, aPairCrossingASideIsNotRebuiltAndFollowsItsTwinInside)
+{
+    // Two floes pressed together drift along x across the periodic side
+    // x = 40 (neighbour skin 1 m: the skin alone rebuilds the list once
+    // every second of drift at 0.5 m/s). A body that crosses a side moves
+    // its pairs' images with it (NeighbourList::applyWraps) instead of a
+    // rebuild: no build at the steps where a floe wraps, and the pair, its
+    // contacts, their springs and its feature-pair list go on as in the
+    // same drift inside the domain (a twin 20 m upstream that does not
+    // cross), to the rounding of positions summed at other magnitudes
+    auto make = [](double x0)
+    {
+        WorldSettings s = noGravity();
+        s.skin = 1.0;
+        auto w = std::make_unique<World>(s);
+        const int mat = w->addMaterial(ice(1e9));
+        w->setPairProperties(mat, mat, PairProperties{0.3, 0.5});
+        const int sA = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(0.3), -0.4, 0.8), 0.1));
+        const int sB = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(1.1), -0.4, 0.8), 0.1));
+        // B closes on A from behind (0.1 m/s faster) and hits it after A
+        // has crossed the side (across: through A's image), both drifting
+        // at about 0.5 m/s
+        w->addBody(sA, mat, Vec3(x0, 10, 0), Quat::Identity(), Vec3(0.5, 0, 0), Vec3(0, 0, 0.05));
+        w->addBody(sB, mat, Vec3(x0 - 2.5, 10.2, 0), Quat::Identity(), Vec3(0.6, 0.02, 0), Vec3(0, 0, -0.04));
+        w->setDomain(periodicBox(0, 40, 0, 20, true, false));
+        return w;
+    };
+    auto across = make(39.7);
+    auto inside = make(19.7);
+    int wrapSteps = 0, buildsAtWraps = 0, crossingSteps = 0, touching = 0, countsDiffer = 0;
+    double Fscale = 0, maxDiff = 0;
+    for (int k = 0; k < 8000; ++k)
+    {
+        const double xA = across->bodies()[0].x.x(), xB = across->bodies()[1].x.x();
+        const long builds = across->neighbourListBuilds();
+        across->step();
+        inside->step();
+        const bool wrapped =
+            across->bodies()[0].x.x() < xA - 20 || across->bodies()[1].x.x() < xB - 20;
+        if (wrapped)
+        {
+            ++wrapSteps;
+            buildsAtWraps += across->neighbourListBuilds() != builds;
+        }
+        crossingSteps += crossingContacts(*across) > 0;
+        touching += across->contactCount() > 0;
+        countsDiffer += across->contactCount() != inside->contactCount();
+        for (int b = 0; b < 2; ++b)
+        {
+            Fscale = std::max(Fscale, inside->bodies()[b].force.norm());
+            maxDiff = std::max(maxDiff, (across->bodies()[b].force - inside->bodies()[b].force).norm());
+        }
+    }
+    EXPECT_EQ(wrapSteps, 2);        // A, then B
+    EXPECT_EQ(buildsAtWraps, 0);
+    EXPECT_GT(crossingSteps, 0);    // they touched through the side
+    EXPECT_GT(touching, 20);
+    // A term that starts or ends within the rounding of the positions may
+    // do so a step apart in the twins (the forces agree all the same)
+    EXPECT_LE(countsDiffer, 2);
+    EXPECT_GT(Fscale, 0);
+    EXPECT_LE(maxDiff, 1e-6*Fscale);
+    for (int b = 0; b < 2; ++b)
+    {
+        const Body& p = across->bodies()[b];
+        const Body& q = inside->bodies()[b];
+        EXPECT_LE((p.v - q.v).norm(), 1e-10*q.v.norm());
+        // 20 m ahead, less the period once wrapped
+        EXPECT_NEAR(std::remainder(p.x.x() - q.x.x() - 20, 40), 0, 1e-9);
+    }
+}
+
+
 TEST(periodic, momentumOfAPeriodicFieldIsConserved)
 {
     // No walls, no gravity, no water: only contact forces, equal and

@@ -650,24 +650,19 @@ double World::dilationSum(const ContactPair& p) const
 
 void World::checkOverlapRange() const
 {
-    for (const ContactPair& p : nlist_->pairs())
-    {
-        if (p.nContacts == 0) continue;
-        const double R = dilationSum(p);
-        if (!(p.deepest < R))
-        {
-            const double tc = estimatedContactTime();
-            std::ostringstream msg;
-            msg << "body " << bodies_[p.i].id << " and "
-                << (p.isWall() ? "wall " + walls_[p.wall()].name : "body " + std::to_string(bodies_[p.j].id))
-                << " overlap by " << p.deepest << " m, as much as their dilation radii's sum "
-                << R << " m (a core inside the other: beyond the contact model). The DEM step "
-                << settings_.timeStep << " s did not resolve this impact (estimated contact time "
-                << tc << " s at " << settings_.contactCheckVelocity
-                << " m/s, shorter for faster impacts): reduce deltaT";
-            throw Error(msg.str(), "deltaT");
-        }
-    }
+    if (tooDeepPair_ < 0) return;
+    const ContactPair& p = nlist_->pairs()[tooDeepPair_];
+    const double R = dilationSum(p);
+    const double tc = estimatedContactTime();
+    std::ostringstream msg;
+    msg << "body " << bodies_[p.i].id << " and "
+        << (p.isWall() ? "wall " + walls_[p.wall()].name : "body " + std::to_string(bodies_[p.j].id))
+        << " overlap by " << p.deepest << " m, as much as their dilation radii's sum "
+        << R << " m (a core inside the other: beyond the contact model). The DEM step "
+        << settings_.timeStep << " s did not resolve this impact (estimated contact time "
+        << tc << " s at " << settings_.contactCheckVelocity
+        << " m/s, shorter for faster impacts): reduce deltaT";
+    throw Error(msg.str(), "deltaT");
 }
 
 } // namespace iceDEM

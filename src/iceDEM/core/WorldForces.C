@@ -273,6 +273,7 @@ void World::pairForces(double dtTangential)
         };
 
         int searched = 0;
+        int tooDeep = -1;
         #pragma omp for schedule(dynamic, 64)
         for (int k = 0; k < nPairs; ++k)
         {
@@ -356,6 +357,12 @@ void World::pairForces(double dtTangential)
                 p.elasticEnergy += r.elasticEnergy;
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
+            // Beyond the contact model's range (checkOverlapRange): the
+            // first such pair of this thread (the loop's pairs ascend)
+            if (nFound > 0 && tooDeep < 0 && !(p.deepest < dilationSum(p)))
+            {
+                tooDeep = k;
+            }
 
             // A list built by this search is staged; a held one stays in
             // the pool as it is; a dropped one is left there as garbage
@@ -394,6 +401,7 @@ void World::pairForces(double dtTangential)
         PoolCounts& mine = chunkCounts_[thread];
         mine = PoolCounts();
         mine.searched = searched;
+        mine.tooDeep = tooDeep;
         for (int k = share.begin; k < share.end; ++k)
         {
             mine.contacts += pairs[k].nContacts;
@@ -403,7 +411,16 @@ void World::pairForces(double dtTangential)
         if (thread == 0)
         {
             searchedPairs_ = 0;
-            for (int t = 0; t < share.nThreads; ++t) searchedPairs_ += chunkCounts_[t].searched;
+            tooDeepPair_ = -1;
+            for (int t = 0; t < share.nThreads; ++t)
+            {
+                const PoolCounts& c = chunkCounts_[t];
+                searchedPairs_ += c.searched;
+                if (c.tooDeep >= 0 && (tooDeepPair_ < 0 || c.tooDeep < tooDeepPair_))
+                {
+                    tooDeepPair_ = c.tooDeep;
+                }
+            }
         }
 
         int offset = 0;

@@ -69,7 +69,8 @@ void NeighbourList::build(const World& world)
         // Small and large bodies
         std::vector<double> sorted(R);
         std::nth_element(sorted.begin(), sorted.begin() + N/2, sorted.end());
-        const double largeLimit = largeBodyFactor*sorted[N/2];
+        const double rMedian = sorted[N/2];
+        const double largeLimit = largeBodyFactor*rMedian;
 
         std::vector<int> small, large;
         double rMax = 0;
@@ -104,9 +105,13 @@ void NeighbourList::build(const World& world)
 
         if (nReal > 0)
         {
-            // Cells at least one interaction range wide: neighbours are in
-            // the 27 surrounding cells
-            double h = 2*rMax + skin_;
+            // Cells as wide as the reach of a pair of median bodies; each
+            // real body searches the cells within its own reach of the
+            // largest small body, R_i + rMax + skin (cells as wide as the
+            // largest reach held about 15 floes each in a pack of Voronoi
+            // floes, whose largest radius is three times their smallest:
+            // a body tested some 130 items for its 6 neighbours)
+            double h = 2*rMedian + skin_;
             const Vec3 extent = hi - lo;
             auto cellsFor = [&](double hh)
             {
@@ -152,34 +157,48 @@ void NeighbourList::build(const World& world)
                 cellBodies_[fill[cellOf_[k]]++] = k;
             }
 
-            // Real bodies against the items of the surrounding cells
+            // The cells [first, last] along each axis that hold every item
+            // within 'reach' of x (widened by a relative 1e-9 against the
+            // rounding of the bounds; clamped to the grid)
+            const int n[3] = {nx, ny, nz};
+            auto cellRange = [&](const Vec3& x, double reach, int first[3], int last[3])
+            {
+                const double wide = reach*(1 + 1e-9);
+                for (int d = 0; d < 3; ++d)
+                {
+                    const double a = std::floor((x[d] - wide - lo[d])/h);
+                    const double b = std::floor((x[d] + wide - lo[d])/h);
+                    first[d] = int(std::max(0.0, std::min(double(n[d] - 1), a)));
+                    last[d] = int(std::max(0.0, std::min(double(n[d] - 1), b)));
+                }
+            };
+
+            // Real bodies against the items within their reach
             for (int r = 0; r < nReal; ++r)
             {
                 const int i = items_[r].body;
-                int cx, cy, cz;
-                cellIndex(bodies[i].x, cx, cy, cz);
-                for (int dz = -1; dz <= 1; ++dz)
-                for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx)
+                int first[3], last[3];
+                cellRange(bodies[i].x, R[i] + rMax + skin_, first, last);
+                for (int z = first[2]; z <= last[2]; ++z)
+                for (int y = first[1]; y <= last[1]; ++y)
+                for (int x = first[0]; x <= last[0]; ++x)
                 {
-                    const int x = cx + dx, y = cy + dy, z = cz + dz;
-                    if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz)
-                    {
-                        continue;
-                    }
                     const int c = (z*ny + y)*nx + x;
                     for (int k = cellStart_[c]; k < cellStart_[c + 1]; ++k)
                     {
+                        // The distance first: it reads the item and the
+                        // radii, movable reads body j (a cache miss for
+                        // most items, which are not close)
                         const Ghost& g = items_[cellBodies_[k]];
                         const int j = g.body;
                         if (g.image == Domain::noImage)
                         {
-                            if (j > i && movable(i, j) && close(i, j, g.x))
+                            if (j > i && close(i, j, g.x) && movable(i, j))
                             {
                                 candidates_.push_back({i, j, Domain::noImage});
                             }
                         }
-                        else if (j != i && movable(i, j) && close(i, j, g.x))
+                        else if (j != i && close(i, j, g.x) && movable(i, j))
                         {
                             addPair(i, j, g.image);
                         }
@@ -353,6 +372,48 @@ void NeighbourList::build(const World& world)
         poseAtBuild_[i] = BuildPose{bodies[i].q, bodies[i].x, R[i]};
     }
     motion_.assign(N, 0);
+}
+
+
+bool NeighbourList::applyWraps(const std::vector<int>& wraps, const Domain& domain)
+{
+    const int N = static_cast<int>(poseAtBuild_.size());
+    if (int(wraps.size()) != N || int(bodyStart_.size()) != N + 1) return false;
+
+    auto newImage = [&wraps](const ContactPair& p)
+    {
+        return Domain::compose
+        (
+            Domain::compose(p.image, wraps[p.i]),
+            Domain::inverse(wraps[p.j])
+        );
+    };
+
+    // Checked first, so that a refusal leaves the list as it was
+    for (int i = 0; i < N; ++i)
+    {
+        if (wraps[i] == Domain::noImage) continue;
+        for (int k = bodyStart_[i]; k < bodyStart_[i + 1]; ++k)
+        {
+            const ContactPair& p = pairs_[bodyPairs_[k]];
+            if (!p.isWall() && newImage(p) < 0) return false;
+        }
+    }
+    for (int i = 0; i < N; ++i)
+    {
+        const int w = wraps[i];
+        if (w == Domain::noImage) continue;
+        for (int k = bodyStart_[i]; k < bodyStart_[i + 1]; ++k)
+        {
+            ContactPair& p = pairs_[bodyPairs_[k]];
+            if (p.isWall()) continue;
+            // Once per pair: from its first body that wrapped
+            const int first = wraps[p.i] != Domain::noImage ? p.i : p.j;
+            if (first == i) p.image = newImage(p);
+        }
+        poseAtBuild_[i].x += domain.shift(w);
+    }
+    return true;
 }
 
 
