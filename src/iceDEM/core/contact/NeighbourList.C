@@ -39,6 +39,7 @@ void NeighbourList::build(const World& world)
     ++builds_;
 
     candidates_.clear();
+    extras_.clear();
 
     std::vector<double> R(N);
     for (int i = 0; i < N; ++i)
@@ -57,11 +58,12 @@ void NeighbourList::build(const World& world)
         return (bodies[i].x - y).squaredNorm() < reach*reach;
     };
     //- The pair of i with image 'image' of j, stored with the smaller
-    //  index first (the image then applies to the other)
+    //  index first (the image then applies to the other), among the
+    //  extras: the pairs that do not come in the grid's order (below)
     auto addPair = [&](int i, int j, int image)
     {
-        if (i < j) candidates_.push_back({i, j, image});
-        else candidates_.push_back({j, i, Domain::inverse(image)});
+        if (i < j) extras_.push_back({i, j, image});
+        else extras_.push_back({j, i, Domain::inverse(image)});
     };
 
     if (N > 1)
@@ -150,11 +152,13 @@ void NeighbourList::build(const World& world)
             {
                 cellStart_[c + 1] += cellStart_[c];
             }
-            cellBodies_.assign(nItems, -1);
+            // The items themselves in cell order: the search below reads
+            // them one after the other
+            cellItems_.resize(nItems);
             std::vector<int> fill(cellStart_.begin(), cellStart_.end() - 1);
             for (int k = 0; k < nItems; ++k)
             {
-                cellBodies_[fill[cellOf_[k]]++] = k;
+                cellItems_[fill[cellOf_[k]]++] = items_[k];
             }
 
             // The cells [first, last] along each axis that hold every item
@@ -173,10 +177,19 @@ void NeighbourList::build(const World& world)
                 }
             };
 
-            // Real bodies against the items within their reach
+            // Real bodies against the items within their reach. The real
+            // items come in the order of their bodies, so the candidates
+            // come by i; each body's are sorted by (j, image) as they
+            // come, and a pair found from its larger index (through an
+            // image) joins the extras
+            auto byKey = [N](const Candidate& a, const Candidate& b)
+            {
+                return pairKey(a.i, a.j, a.image, N) < pairKey(b.i, b.j, b.image, N);
+            };
             for (int r = 0; r < nReal; ++r)
             {
                 const int i = items_[r].body;
+                const std::size_t segment = candidates_.size();
                 int first[3], last[3];
                 cellRange(bodies[i].x, R[i] + rMax + skin_, first, last);
                 for (int z = first[2]; z <= last[2]; ++z)
@@ -189,7 +202,7 @@ void NeighbourList::build(const World& world)
                         // The distance first: it reads the item and the
                         // radii, movable reads body j (a cache miss for
                         // most items, which are not close)
-                        const Ghost& g = items_[cellBodies_[k]];
+                        const Ghost& g = cellItems_[k];
                         const int j = g.body;
                         if (g.image == Domain::noImage)
                         {
@@ -200,10 +213,12 @@ void NeighbourList::build(const World& world)
                         }
                         else if (j != i && close(i, j, g.x) && movable(i, j))
                         {
-                            addPair(i, j, g.image);
+                            if (i < j) candidates_.push_back({i, j, g.image});
+                            else addPair(i, j, g.image);
                         }
                     }
                 }
+                std::sort(candidates_.begin() + segment, candidates_.end(), byKey);
             }
         }
 
@@ -252,17 +267,29 @@ void NeighbourList::build(const World& world)
             const double d = walls[w].normal.dot(bodies[i].x - walls[w].point);
             if (d < R[i] + skin_)
             {
-                candidates_.push_back({i, -1 - w, Domain::noImage});
+                extras_.push_back({i, -1 - w, Domain::noImage});
             }
         }
     }
 
+    // The grid's candidates (sorted) and the extras (sorted here: the
+    // pairs through images found from their larger index, those of the
+    // large bodies and of the walls) merged, then each pair once (a pair
+    // through an image is found from both of its bodies)
     auto key = [N](const Candidate& c) { return pairKey(c.i, c.j, c.image, N); };
-    std::sort
-    (
-        candidates_.begin(), candidates_.end(),
-        [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); }
-    );
+    auto before = [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); };
+    if (!extras_.empty())
+    {
+        std::sort(extras_.begin(), extras_.end(), before);
+        merged_.resize(candidates_.size() + extras_.size());
+        std::merge
+        (
+            candidates_.begin(), candidates_.end(),
+            extras_.begin(), extras_.end(),
+            merged_.begin(), before
+        );
+        candidates_.swap(merged_);
+    }
     candidates_.erase
     (
         std::unique
