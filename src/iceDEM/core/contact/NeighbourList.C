@@ -57,6 +57,9 @@ void NeighbourList::build(const World& world)
         const double reach = R[i] + R[j] + skin_;
         return (bodies[i].x - y).squaredNorm() < reach*reach;
     };
+    //- The order of the pairs (pairKey)
+    auto key = [N](const Candidate& c) { return pairKey(c.i, c.j, c.image, N); };
+    auto before = [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); };
     //- The pair of i with image 'image' of j, stored with the smaller
     //  index first (the image then applies to the other), among the
     //  extras: the pairs that do not come in the grid's order (below)
@@ -182,10 +185,6 @@ void NeighbourList::build(const World& world)
             // come by i; each body's are sorted by (j, image) as they
             // come, and a pair found from its larger index (through an
             // image) joins the extras
-            auto byKey = [N](const Candidate& a, const Candidate& b)
-            {
-                return pairKey(a.i, a.j, a.image, N) < pairKey(b.i, b.j, b.image, N);
-            };
             for (int r = 0; r < nReal; ++r)
             {
                 const int i = items_[r].body;
@@ -218,7 +217,7 @@ void NeighbourList::build(const World& world)
                         }
                     }
                 }
-                std::sort(candidates_.begin() + segment, candidates_.end(), byKey);
+                std::sort(candidates_.begin() + segment, candidates_.end(), before);
             }
         }
 
@@ -276,8 +275,6 @@ void NeighbourList::build(const World& world)
     // pairs through images found from their larger index, those of the
     // large bodies and of the walls) merged, then each pair once (a pair
     // through an image is found from both of its bodies)
-    auto key = [N](const Candidate& c) { return pairKey(c.i, c.j, c.image, N); };
-    auto before = [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); };
     if (!extras_.empty())
     {
         std::sort(extras_.begin(), extras_.end(), before);
