@@ -287,9 +287,9 @@ TEST(periodic, collisionAcrossASideFollowsTheSameCollisionInside)
 
 TEST(periodic, aPairCrossingASideIsNotRebuiltAndFollowsItsTwinInside)
 {
-    // Two floes pressed together drift along x across the periodic side
-    // x = 40 (neighbour skin 1 m: the skin alone rebuilds the list once
-    // every second of drift at 0.5 m/s). A body that crosses a side moves
+    // Two floes drift along x across the periodic side x = 40 and collide
+    // through it (neighbour skin 1 m: the skin alone rebuilds the list
+    // about once every second of drift). A body that crosses a side moves
     // its pairs' images with it (NeighbourList::applyWraps) instead of a
     // rebuild: no build at the steps where a floe wraps, and the pair, its
     // contacts, their springs and its feature-pair list go on as in the

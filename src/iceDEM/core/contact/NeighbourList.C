@@ -323,7 +323,7 @@ void NeighbourList::build(const World& world)
             int image = p.image;
             if (!p.isWall())
             {
-                image = Domain::compose(Domain::compose(p.image, wi), Domain::inverse(wj));
+                image = Domain::afterWraps(p.image, wi, wj);
             }
             if (image < 0) continue;    // out of reach: its history ends
             p.image = image;
@@ -406,11 +406,7 @@ bool NeighbourList::applyWraps(const std::vector<int>& wraps, const Domain& doma
 
     auto newImage = [&wraps](const ContactPair& p)
     {
-        return Domain::compose
-        (
-            Domain::compose(p.image, wraps[p.i]),
-            Domain::inverse(wraps[p.j])
-        );
+        return Domain::afterWraps(p.image, wraps[p.i], wraps[p.j]);
     };
 
     // Checked first, so that a refusal leaves the list as it was
