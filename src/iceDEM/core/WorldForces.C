@@ -277,7 +277,7 @@ void World::pairForces(double dtTangential)
         // Static: a thread takes the pairs (sorted by i) of about the bodies
         // it moved in the step's first loop and sums in the last, so their
         // lines stay in its cache. Chunks of 64 handed out as threads came
-        // free were 5-20 % slower on every field (tests/benchmark/README.md,
+        // free were 4-17 % slower on every field (tests/benchmark/README.md,
         // twenty-ninth round)
         #pragma omp for schedule(static)
         for (int k = 0; k < nPairs; ++k)
