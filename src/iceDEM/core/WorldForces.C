@@ -224,6 +224,7 @@ void World::preparePairs()
     staged_.resize(nlist_->pairs().size());
     nlist_->hasContacts().resize(nlist_->pairs().size());
     chunkCounts_.resize(maxThreads);
+    pairBalance_.resize(maxThreads);
 }
 
 
@@ -274,13 +275,16 @@ void World::pairForces(double dtTangential)
 
         int searched = 0;
         int tooDeep = -1;
-        // Static: a thread takes the pairs (sorted by i) of about the bodies
-        // it moved in the step's first loop and sums in the last, so their
-        // lines stay in its cache. Chunks of 64 handed out as threads came
-        // free were 4-17 % slower on every field (tests/benchmark/README.md,
-        // twenty-ninth round)
-        #pragma omp for schedule(static)
-        for (int k = 0; k < nPairs; ++k)
+        // Contiguous chunks: a thread takes the pairs (sorted by i) of about
+        // the bodies it moved in the step's first loop and sums in the last,
+        // so their lines stay in its cache. Chunks of 64 handed out as
+        // threads came free were 4-17 % slower on every field
+        // (tests/benchmark/README.md, twenty-ninth round). The chunks'
+        // boundaries even out the threads' times (LoopBalance)
+        int loopBegin, loopEnd;
+        pairBalance_.chunk(thread, share.nThreads, nPairs, loopBegin, loopEnd);
+        const double loopStart = wallClock();
+        for (int k = loopBegin; k < loopEnd; ++k)
         {
             ContactPair& p = pairs[k];
             if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
@@ -386,6 +390,8 @@ void World::pairForces(double dtTangential)
             }
             flagContacts(k, p);
         }
+        pairBalance_.record(thread, share.nThreads, wallClock() - loopStart);
+        #pragma omp barrier
 
         // The contacts' pool in pair order (independent of the thread
         // count), written in parallel: each thread takes a static chunk of
@@ -401,6 +407,7 @@ void World::pairForces(double dtTangential)
             nl.contacts().resize(nContacts);
             contactCount_ = static_cast<int>(nContacts);
             appendNewLists();
+            pairBalance_.rebalance(share.nThreads);
         }
 
         PoolCounts& mine = chunkCounts_[thread];

@@ -1,0 +1,172 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    LoopBalance: the pair loop's chunks, evened out by the threads' times.
+    Synthetic workloads with known costs per item: the chunks always cover
+    the range once and in order, the times even out, and one outlier
+    moves a boundary by at most the step's limit. (That the pair loop's
+    results do not depend on the chunks is the thread-count tests' part:
+    1 thread = 2 threads, test_integration.C and others.)
+\*---------------------------------------------------------------------------*/
+
+#include "LoopBalance.H"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace iceDEM;
+
+namespace
+{
+
+//- The chunks of a team of T threads over n items: contiguous, in thread
+//  order, covering [0, n) once
+void expectPartition(const LoopBalance& b, int T, int n)
+{
+    int next = 0;
+    for (int t = 0; t < T; ++t)
+    {
+        int begin, end;
+        b.chunk(t, T, n, begin, end);
+        EXPECT_EQ(begin, next) << "thread " << t;
+        EXPECT_LE(begin, end) << "thread " << t;
+        next = end;
+    }
+    EXPECT_EQ(next, n);
+}
+
+//- Each thread's time for its chunk under the cost per item 'cost'
+std::vector<double> chunkTimes
+(
+    const LoopBalance& b, int T, const std::vector<double>& cost
+)
+{
+    const int n = static_cast<int>(cost.size());
+    std::vector<double> times(T, 0);
+    for (int t = 0; t < T; ++t)
+    {
+        int begin, end;
+        b.chunk(t, T, n, begin, end);
+        for (int k = begin; k < end; ++k) times[t] += cost[k];
+    }
+    return times;
+}
+
+//- Evaluations of the loop: times recorded, then rebalanced
+void run(LoopBalance& b, int T, const std::vector<double>& cost, int evaluations)
+{
+    for (int e = 0; e < evaluations; ++e)
+    {
+        const std::vector<double> times = chunkTimes(b, T, cost);
+        for (int t = 0; t < T; ++t) b.record(t, T, times[t]);
+        b.rebalance(T);
+    }
+}
+
+} // anonymous namespace
+
+
+TEST(LoopBalance, equalChunksAtFirstAndForAnotherTeamSize)
+{
+    LoopBalance b;
+    b.resize(2);
+    int begin, end;
+    b.chunk(0, 2, 1000, begin, end);
+    EXPECT_EQ(begin, 0);
+    EXPECT_EQ(end, 500);
+    b.chunk(1, 2, 1000, begin, end);
+    EXPECT_EQ(begin, 500);
+    EXPECT_EQ(end, 1000);
+
+    // Moved for a team of two, a team of one (a region not entered in
+    // parallel) takes everything, one of three equal thirds
+    std::vector<double> cost(1000, 1.0);
+    for (int k = 0; k < 300; ++k) cost[k] = 3;
+    run(b, 2, cost, 100);
+    b.chunk(0, 1, 1000, begin, end);
+    EXPECT_EQ(begin, 0);
+    EXPECT_EQ(end, 1000);
+    b.chunk(1, 3, 999, begin, end);
+    EXPECT_EQ(begin, 333);
+    EXPECT_EQ(end, 666);
+}
+
+
+TEST(LoopBalance, timesEvenOut)
+{
+    // The expensive items first (the structure's pairs come first in the
+    // pair order): equal counts give times 1200 and 500
+    for (const int T : {2, 3, 4})
+    {
+        std::vector<double> cost(1000, 1.0);
+        for (int k = 0; k < 300; ++k) cost[k] = 3;
+        LoopBalance b;
+        b.resize(T);
+        const std::vector<double> before = chunkTimes(b, T, cost);
+        run(b, T, cost, 200);
+        expectPartition(b, T, 1000);
+        const std::vector<double> after = chunkTimes(b, T, cost);
+        double total = 0, largestBefore = 0, largest = 0;
+        for (int t = 0; t < T; ++t)
+        {
+            total += after[t];
+            largestBefore = std::max(largestBefore, before[t]);
+            largest = std::max(largest, after[t]);
+        }
+        // Within the cost of the dearest item of the ideal share (the
+        // items are whole: no split is closer in general)
+        EXPECT_LE(largest, total/T + 3) << T << " threads";
+        EXPECT_GT(largestBefore, total/T + 100) << T << " threads";
+    }
+}
+
+
+TEST(LoopBalance, anOutlierMovesABoundaryLittle)
+{
+    const int n = 100000;
+    std::vector<double> cost(n, 1.0);
+    LoopBalance b;
+    b.resize(2);
+    run(b, 2, cost, 10);
+    int begin0, end0;
+    b.chunk(0, 2, n, begin0, end0);
+    EXPECT_EQ(end0, n/2);
+
+    // Thread 0 held up once by a factor of 100
+    std::vector<double> times = chunkTimes(b, 2, cost);
+    b.record(0, 2, 100*times[0]);
+    b.record(1, 2, times[1]);
+    b.rebalance(2);
+    int begin1, end1;
+    b.chunk(0, 2, n, begin1, end1);
+    EXPECT_LT(end1, end0);
+    EXPECT_LE(end0 - end1, 0.005*n + 1);
+
+    // ...and it comes back as the times even out again
+    run(b, 2, cost, 10);
+    b.chunk(0, 2, n, begin1, end1);
+    EXPECT_EQ(end1, n/2);
+}
+
+
+TEST(LoopBalance, chunksStayAPartitionUnderRandomTimes)
+{
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> time(1e-6, 1.0);
+    std::uniform_int_distribution<int> items(0, 5000);
+    for (const int T : {2, 3, 8})
+    {
+        LoopBalance b;
+        b.resize(T);
+        for (int e = 0; e < 2000; ++e)
+        {
+            for (int t = 0; t < T; ++t) b.record(t, T, time(gen));
+            b.rebalance(T);
+            expectPartition(b, T, items(gen));
+        }
+    }
+}
