@@ -170,3 +170,32 @@ TEST(LoopBalance, chunksStayAPartitionUnderRandomTimes)
         }
     }
 }
+
+
+TEST(LoopBalance, timesAreUsedOnce)
+{
+    // The body sums' balance moves at the next evaluation's start, which
+    // may come without new times (a step whose team was of another size):
+    // then nothing moves
+    const int n = 1000;
+    LoopBalance b;
+    b.resize(2);
+    b.record(0, 2, 3.0);
+    b.record(1, 2, 1.0);
+    b.rebalance(2);
+    int begin, end;
+    b.chunk(0, 2, n, begin, end);
+    const int moved = end;
+    EXPECT_LT(moved, n/2);
+    for (int e = 0; e < 10; ++e) b.rebalance(2);
+    b.chunk(0, 2, n, begin, end);
+    EXPECT_EQ(end, moved);
+
+    // Times of one thread only: not used, and not kept for later
+    b.record(0, 2, 3.0);
+    b.rebalance(2);
+    b.record(1, 2, 1.0);
+    b.rebalance(2);
+    b.chunk(0, 2, n, begin, end);
+    EXPECT_EQ(end, moved);
+}

@@ -225,6 +225,13 @@ void World::preparePairs()
     nlist_->hasContacts().resize(nlist_->pairs().size());
     chunkCounts_.resize(maxThreads);
     pairBalance_.resize(maxThreads);
+    // The body sums of the last evaluation are done (no thread records
+    // now): their chunks move here
+    for (LoopBalance& b : sumBalance_)
+    {
+        b.resize(maxThreads);
+        b.rebalance(maxThreads);
+    }
 }
 
 
@@ -505,13 +512,31 @@ void World::sumBodyForces(double dtKick, int slowScale)
     const int N = static_cast<int>(bodies_.size());
 
     // Orphaned: called inside a parallel region (or by one thread). Each
-    // thread takes a static chunk of bodies and does all of a body's work,
-    // so the chunk needs no barrier: contact sums in the body's fixed pair
-    // order, body-force models, totals and the second half kick
+    // thread takes a chunk of bodies and does all of a body's work, so the
+    // chunk needs no barrier: contact sums in the body's fixed pair order,
+    // body-force models, totals and the second half kick. The chunks are
+    // evened out by their times (LoopBalance; the steps with body-force
+    // models and those without apart), from the next evaluation on
+    const bool models = !forceModels_.empty() && slowScale > 0;
     const ThreadShare share(N);
-    const int begin = share.begin;
-    const int end = share.end;
+    LoopBalance& balance = sumBalance_[models ? 1 : 0];
+    int begin, end;
+    balance.chunk(share.thread, share.nThreads, N, begin, end);
+    const double start = wallClock();
+    sumBodyChunk(begin, end, dtKick, slowScale, models);
+    balance.record(share.thread, share.nThreads, wallClock() - start);
+}
 
+
+void World::sumBodyChunk
+(
+    int begin,
+    int end,
+    double dtKick,
+    int slowScale,
+    bool models
+)
+{
     for (int b = begin; b < end; ++b)
     {
         const ContactLoad c = contactLoad(b);
@@ -519,7 +544,6 @@ void World::sumBodyForces(double dtKick, int slowScale)
         bodies_[b].torque = c.torque;
     }
 
-    const bool models = !forceModels_.empty() && slowScale > 0;
     if (models)
     {
         for (int b = begin; b < end; ++b)
