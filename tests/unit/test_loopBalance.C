@@ -39,6 +39,15 @@ void expectPartition(const LoopBalance& b, int T, int n)
     EXPECT_EQ(next, n);
 }
 
+//- Thread t's chunk of n items in a team of T threads is [begin, end)
+void expectChunk(const LoopBalance& b, int t, int T, int n, int begin, int end)
+{
+    int first, last;
+    b.chunk(t, T, n, first, last);
+    EXPECT_EQ(first, begin) << "thread " << t << " of " << T;
+    EXPECT_EQ(last, end) << "thread " << t << " of " << T;
+}
+
 //- Each thread's time for its chunk under the cost per item 'cost'
 std::vector<double> chunkTimes
 (
@@ -74,32 +83,23 @@ TEST(LoopBalance, equalChunksAtFirstAndForAnotherTeamSize)
 {
     LoopBalance b;
     b.resize(2);
-    int begin, end;
-    b.chunk(0, 2, 1000, begin, end);
-    EXPECT_EQ(begin, 0);
-    EXPECT_EQ(end, 500);
-    b.chunk(1, 2, 1000, begin, end);
-    EXPECT_EQ(begin, 500);
-    EXPECT_EQ(end, 1000);
+    expectChunk(b, 0, 2, 1000, 0, 500);
+    expectChunk(b, 1, 2, 1000, 500, 1000);
 
     // Moved for a team of two, a team of one (a region not entered in
     // parallel) takes everything, one of three equal thirds
     std::vector<double> cost(1000, 1.0);
     for (int k = 0; k < 300; ++k) cost[k] = 3;
     run(b, 2, cost, 100);
-    b.chunk(0, 1, 1000, begin, end);
-    EXPECT_EQ(begin, 0);
-    EXPECT_EQ(end, 1000);
-    b.chunk(1, 3, 999, begin, end);
-    EXPECT_EQ(begin, 333);
-    EXPECT_EQ(end, 666);
+    expectChunk(b, 0, 1, 1000, 0, 1000);
+    expectChunk(b, 1, 3, 999, 333, 666);
 }
 
 
 TEST(LoopBalance, timesEvenOut)
 {
     // The expensive items first (the structure's pairs come first in the
-    // pair order): equal counts give times 1200 and 500
+    // pair order): equal counts give two threads times 1100 and 500
     for (const int T : {2, 3, 4})
     {
         std::vector<double> cost(1000, 1.0);

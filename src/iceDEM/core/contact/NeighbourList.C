@@ -68,12 +68,12 @@ void NeighbourList::build(const World& world)
     auto key = [N](const Candidate& c) { return pairKey(c.i, c.j, c.image, N); };
     auto before = [&key](const Candidate& a, const Candidate& b) { return key(a) < key(b); };
     //- The pair of i with image 'image' of j, stored with the smaller
-    //  index first (the image then applies to the other), among the
-    //  extras: the pairs that do not come in the grid's order (below)
-    auto addPair = [&](int i, int j, int image)
+    //  index first (the image then applies to the other), among extras:
+    //  the pairs that do not come in the grid's order (below)
+    auto addPair = [](std::vector<Candidate>& extras, int i, int j, int image)
     {
-        if (i < j) extras_.push_back({i, j, image});
-        else extras_.push_back({j, i, Domain::inverse(image)});
+        if (i < j) extras.push_back({i, j, image});
+        else extras.push_back({j, i, Domain::inverse(image)});
     };
 
     if (N > 1)
@@ -191,7 +191,7 @@ void NeighbourList::build(const World& world)
             // items come in the order of their bodies, so the candidates
             // come by i; each body's are sorted by (j, image) as they
             // come, and a pair found from its larger index (through an
-            // image) joins the extras (turned round, as addPair does)
+            // image) joins the block's extras
             const auto searchBlock = [&](SearchBlock& block, int rBegin, int rEnd)
             {
                 std::vector<Candidate>& found = block.candidates;
@@ -225,7 +225,7 @@ void NeighbourList::build(const World& world)
                             else if (j != i && close(i, j, g.x) && movable(i, j))
                             {
                                 if (i < j) found.push_back({i, j, g.image});
-                                else block.extras.push_back({j, i, Domain::inverse(g.image)});
+                                else addPair(block.extras, i, j, g.image);
                             }
                         }
                     }
@@ -240,12 +240,9 @@ void NeighbourList::build(const World& world)
             #pragma omp taskloop grainsize(1) default(shared)
             for (int b = 0; b < nBlocks; ++b)
             {
-                searchBlock
-                (
-                    blocks_[b],
-                    static_cast<int>(static_cast<long>(nReal)*b/nBlocks),
-                    static_cast<int>(static_cast<long>(nReal)*(b + 1)/nBlocks)
-                );
+                int rBegin, rEnd;
+                equalShare(nReal, b, nBlocks, rBegin, rEnd);
+                searchBlock(blocks_[b], rBegin, rEnd);
             }
             for (int b = 0; b < nBlocks; ++b)
             {
@@ -266,7 +263,7 @@ void NeighbourList::build(const World& world)
                 if (!movable(L, j)) continue;
                 if (close(L, j, bodies[j].x))
                 {
-                    addPair(L, j, Domain::noImage);
+                    addPair(extras_, L, j, Domain::noImage);
                 }
                 if (!periodic) continue;
                 for (int image = 0; image < 9; ++image)
@@ -284,7 +281,7 @@ void NeighbourList::build(const World& world)
                         continue;
                     }
                     const Vec3 s = domain->shift(image);
-                    if (close(L, j, bodies[j].x + s)) addPair(L, j, image);
+                    if (close(L, j, bodies[j].x + s)) addPair(extras_, L, j, image);
                 }
             }
         }
@@ -426,11 +423,9 @@ void NeighbourList::build(const World& world)
     #pragma omp taskloop grainsize(1) default(shared)
     for (int b = 0; b < nCarry; ++b)
     {
-        carryBlock
-        (
-            static_cast<int>(static_cast<long>(nNew)*b/nCarry),
-            static_cast<int>(static_cast<long>(nNew)*(b + 1)/nCarry)
-        );
+        int kBegin, kEnd;
+        equalShare(nNew, b, nCarry, kBegin, kEnd);
+        carryBlock(kBegin, kEnd);
     }
     pairs_.swap(next);
     hasContacts_.clear();
