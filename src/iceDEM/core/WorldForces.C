@@ -417,14 +417,13 @@ void World::pairForces(double dtTangential)
             pairBalance_.rebalance(share.nThreads);
         }
 
+        // This thread's contacts are those of its chunk of the pair loop,
+        // in its scratch: no pass over the pairs to count them
         PoolCounts& mine = chunkCounts_[thread];
         mine = PoolCounts();
         mine.searched = searched;
         mine.tooDeep = tooDeep;
-        for (int k = share.begin; k < share.end; ++k)
-        {
-            mine.contacts += pairs[k].nContacts;
-        }
+        mine.contacts = static_cast<int>(S.contacts.size());
         #pragma omp barrier
 
         if (thread == 0)
@@ -448,8 +447,9 @@ void World::pairForces(double dtTangential)
         // No barrier after this: what follows in the step (body sums) reads
         // the pairs' forces, not the pools. A pair's header is written only
         // where it changes (a pair without contacts keeps its line shared
-        // with the thread that reads it next)
-        for (int k = share.begin; k < share.end; ++k)
+        // with the thread that reads it next). The chunk of the pair loop:
+        // the headers this thread has just written are in its cache
+        for (int k = loopBegin; k < loopEnd; ++k)
         {
             ContactPair& p = pairs[k];
             if (p.firstContact != offset) p.firstContact = offset;
