@@ -367,3 +367,88 @@ TEST(candidateLists, fieldWithListsFollowsTheFullSearchBitForBit)
     EXPECT_EQ(full->featureListCompactions(), 0);
     expectSameState(*full, *listed);
 }
+
+
+TEST(candidateLists, touchingWalkSkipsTheAxesOnlyWhereNoneCanSeparate)
+{
+    // A pair whose held list is walked and still touches skips the
+    // separating axes when its deepest term overlaps by more than the
+    // rounding of a gap (NarrowPhase.C). Floes about 700 m from the origin
+    // (the study's periodic pack reaches that far), upright and tilted,
+    // their deepest overlap set from about 1e-13 m to 1e-6 m, within and
+    // beyond that rounding (2e-11 m here): the terms and the next axis of
+    // the walk are those of the full search, bit for bit
+    const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
+    std::mt19937_64 rng(71);
+    std::uniform_real_distribution<double> u(-1, 1);
+    NarrowPhaseSettings none, lists;
+    lists.featureSkin = 0.05;
+    int compared = 0, deep = 0, shallow = 0;
+    for (int trial = 0; trial < 200; ++trial)
+    {
+        const bool upright = trial % 2 == 0;
+        auto randomQuat = [&]()
+        {
+            return upright
+              ? rotation(M_PI*u(rng), Vec3::UnitZ())
+              : Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+        };
+        const Quat qA = randomQuat(), qB = randomQuat();
+        const Vec3 xA(700*u(rng), 700*u(rng), 0.1*u(rng));
+        Vec3 dir = upright ? Vec3(u(rng), u(rng), 0) : Vec3(u(rng), u(rng), u(rng));
+        dir.normalize();
+        const Placed A(SA, xA, qA);
+        FoundContact full[maxOut], fromList[maxOut];
+        auto touchesAt = [&](double d)
+        {
+            const Placed B(SB, xA + d*dir, qB);
+            Vec3 axis = Vec3::Zero();
+            return findContacts(A.view(), B.view(), none, axis, full, maxOut) > 0;
+        };
+        // The first contact from far away, then the distance where it
+        // begins to within the rounding of the coordinates
+        double apart = SA.boundingRadius() + SB.boundingRadius();
+        double touching = apart;
+        while (touching > 0 && !touchesAt(touching)) touching -= 0.005;
+        if (!(touching > 0)) continue;
+        apart = touching + 0.005;
+        for (int k = 0; k < 80; ++k)
+        {
+            const double mid = 0.5*(touching + apart);
+            (touchesAt(mid) ? touching : apart) = mid;
+        }
+        for (const double depth : {1e-13, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6})
+        {
+            const Placed B(SB, xA + (touching - depth)*dir, qB);
+            FeaturePairEntry buffer[FeaturePairList::capacity];
+            FeaturePairList list;
+            list.buffer = buffer;
+            Vec3 axisFull = Vec3::Zero(), axisList = Vec3::Zero();
+            // The list's build, then its walk at the same poses (a pair
+            // that touched walks its held list first, as World does)
+            for (int call = 0; call < 2; ++call)
+            {
+                const int nFull = findContacts(A.view(), B.view(), none, axisFull, full, maxOut);
+                const int nList =
+                    findContacts(A.view(), B.view(), lists, axisList, fromList, maxOut, &list);
+                list.touched = nList > 0;
+                expectSameContacts(full, nFull, fromList, nList);
+                ASSERT_FALSE(::testing::Test::HasFailure())
+                    << "trial " << trial << " depth " << depth << " call " << call;
+                EXPECT_EQ(axisFull, axisList);
+                if (call == 1 && nFull > 0)
+                {
+                    ++compared;
+                    double deepest = 0;
+                    for (int k = 0; k < nFull; ++k) deepest = std::max(deepest, full[k].g.overlap);
+                    ++(deepest > 2e-10 ? deep : shallow);
+                }
+            }
+        }
+    }
+    // Not vacuous: walks that skip the axes and walks that try them
+    EXPECT_GT(deep, 500);
+    EXPECT_GT(shallow, 100);
+    std::cout << compared << " walks of touching pairs: " << deep
+              << " deeper than 2e-10 m, " << shallow << " shallower\n";
+}

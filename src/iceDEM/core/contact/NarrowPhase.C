@@ -30,6 +30,18 @@ void extentAlong(const Vec3& a, const Vec3* w, int n, double& lo, double& hi)
     }
 }
 
+//- The deepest term (of positive weight after the first, as the next
+//  step's axis has always been chosen)
+int deepestTerm(const FoundContact* out, int n)
+{
+    int deepest = 0;
+    for (int k = 1; k < n; ++k)
+    {
+        if (out[k].g.weight > 0 && out[k].g.overlap > out[deepest].g.overlap) deepest = k;
+    }
+    return deepest;
+}
+
 } // anonymous namespace
 
 
@@ -63,8 +75,8 @@ int findContacts
     // 1. The pair's candidate list (candidateLists.H) holds while the two
     //    cores have moved less than its limit relative to each other since
     //    its build. A pair that touched at its last search walks it first:
-    //    if it still touches, the separating axes below need only show
-    //    that they do not separate
+    //    if it still touches, the separating axes below cannot separate it
+    //    (below), or need only show that they do not
     double m = -1;
     RelativePose now{Vec3::Zero(), Quat::Identity()};
     if (list && s.featureSkin > 0)
@@ -88,10 +100,31 @@ int findContacts
     }
     const bool touching = walked && col.n > 0;
 
+    // A term deeper than the rounding of a gap: no axis below can separate
+    // the pair (a term is the distance of a point of each core, and the gap
+    // along a unit axis is at most that distance; the computed gap and
+    // distance differ from theirs by a few units in the last place of the
+    // coordinates, 64 of them allowed). The walk's terms stand, as they
+    // would after the axes
+    if (touching)
+    {
+        const int deepest = deepestTerm(out, col.n);
+        const double coordinates =
+            A.x.cwiseAbs().maxCoeff() + B.x.cwiseAbs().maxCoeff()
+          + SA.boundingRadius() + SB.boundingRadius();
+        const double rounding = 64*std::numeric_limits<double>::epsilon()*coordinates;
+        if (out[deepest].g.overlap > rounding)
+        {
+            axis = out[deepest].g.normal;
+            return col.n;
+        }
+    }
+
     // 2. Separating axes: the hint, then the line of centres; the first
     //    that separates ends the search (a walk's terms dropped: the
     //    search is that of a separated pair). Where the walk found terms
-    //    an axis is dropped as soon as it cannot separate: its gap, min
+    //    (none deeper than the rounding: above) an axis is dropped as soon
+    //    as it cannot separate: its gap, min
     //    a.w_B - max a.w_A, is at most that of the vertices seen so far
     //    (rounding is monotone), and its other products (the best axis:
     //    the slab of a build or a full search, the hint where nothing
@@ -347,12 +380,7 @@ int findContacts
     // the closest feature pair (a separating axis of convex cores)
     if (col.n > 0)
     {
-        int deepest = 0;
-        for (int k = 1; k < col.n; ++k)
-        {
-            if (out[k].g.weight > 0 && out[k].g.overlap > out[deepest].g.overlap) deepest = k;
-        }
-        axis = out[deepest].g.normal;
+        axis = out[deepestTerm(out, col.n)].g.normal;
     }
     else if (col.minDirection.squaredNorm() > 0)
     {
