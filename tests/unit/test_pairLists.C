@@ -452,3 +452,83 @@ TEST(candidateLists, touchingWalkSkipsTheAxesOnlyWhereNoneCanSeparate)
     std::cout << compared << " walks of touching pairs: " << deep
               << " deeper than 2e-10 m, " << shallow << " shallower\n";
 }
+
+
+TEST(candidateLists, edgePairsComingIntoReachAreWalkedInTime)
+{
+    // An edge pair listed beyond reach (its margin, the segments' distance
+    // at the build less R and the slack) must be evaluated as soon as the
+    // relative motion bound passes that margin: tilted floes whose first
+    // contact is an edge crossing an edge, the list built while they are
+    // a few millimetres apart, then B moved straight at A in steps of
+    // 0.25 mm. The terms of every step, the first edge-edge term among
+    // them, are those of the full search, bit for bit, from the held list
+    // (an entry evaluated 5 mm late, or its first tests dropping a pair
+    // that can touch, fails here)
+    const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
+    std::mt19937_64 rng(97);
+    std::uniform_real_distribution<double> u(-1, 1);
+    NarrowPhaseSettings none, lists;
+    lists.featureSkin = 0.05;
+    int edgeFirst = 0;
+    for (int trial = 0; trial < 400 && edgeFirst < 40; ++trial)
+    {
+        const Quat qA = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+        const Quat qB = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+        const Vec3 xA(50*u(rng), 50*u(rng), 0.1*u(rng));
+        const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+        const Placed A(SA, xA, qA);
+        FoundContact full[maxOut], fromList[maxOut];
+        auto termsAt = [&](double d)
+        {
+            const Placed B(SB, xA + d*dir, qB);
+            Vec3 axis = Vec3::Zero();
+            return findContacts(A.view(), B.view(), none, axis, full, maxOut);
+        };
+        // The first contact, to 1e-9 m
+        double touching = SA.boundingRadius() + SB.boundingRadius();
+        while (touching > 0 && termsAt(touching) == 0) touching -= 0.005;
+        if (!(touching > 0)) continue;
+        double apart = touching + 0.005;
+        while (apart - touching > 1e-9)
+        {
+            const double mid = 0.5*(touching + apart);
+            (termsAt(mid) > 0 ? touching : apart) = mid;
+        }
+        const int nFirst = termsAt(touching);
+        if (!(nFirst == 1 && full[0].g.type == FeaturePair::edgeEdge)) continue;
+
+        // The list built 2-5 mm before that contact, then the approach
+        const double gap = 0.002 + 0.003*0.5*(1 + u(rng));
+        FeaturePairEntry buffer[FeaturePairList::capacity];
+        FeaturePairList list;
+        list.buffer = buffer;
+        Vec3 axisFull = Vec3::Zero(), axisList = Vec3::Zero();
+        bool builtApart = false, heldAtContact = false;
+        for (double d = touching + gap; d > touching - 0.002; d -= 2.5e-4)
+        {
+            const Placed B(SB, xA + d*dir, qB);
+            const int before = list.count;
+            const Vec3 t0 = list.t;
+            const int nFull = findContacts(A.view(), B.view(), none, axisFull, full, maxOut);
+            const int nList =
+                findContacts(A.view(), B.view(), lists, axisList, fromList, maxOut, &list);
+            list.touched = nList > 0;
+            expectSameContacts(full, nFull, fromList, nList);
+            ASSERT_FALSE(::testing::Test::HasFailure()) << "trial " << trial << " d " << d;
+            EXPECT_EQ(axisFull, axisList);
+            const bool held = before >= 0 && list.count == before && list.t == t0;
+            if (d > touching + 1e-3 && nFull == 0 && list.count >= 0) builtApart = true;
+            if (nFull > 0)
+            {
+                heldAtContact = builtApart && held;
+                break;
+            }
+        }
+        edgeFirst += heldAtContact;
+    }
+    // Not vacuous: approaches whose first term, an edge-edge one, came from
+    // a list held since the floes were apart
+    EXPECT_GE(edgeFirst, 20);
+    std::cout << edgeFirst << " approaches met at an edge-edge term by a held list\n";
+}
