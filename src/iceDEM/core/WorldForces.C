@@ -648,16 +648,8 @@ ContactLoad World::contactLoad(int b) const
     ContactLoad c;
     if (!nlist_) return c;
     const auto& pairs = nlist_->pairs();
-    // Only the pairs with contacts carry a force: where the pair loop's
-    // flags are those of these pairs, the others are not read (most of a
-    // drifting field's; the same sums in the same order)
-    const std::vector<unsigned char>& flags = nlist_->hasContacts();
-    const bool flagged = flags.size() == pairs.size();
-    for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
+    auto add = [&c, b](const ContactPair& p)
     {
-        const int pk = nlist_->bodyPair(k);
-        if (flagged && !flags[pk]) continue;
-        const ContactPair& p = pairs[pk];
         if (p.i == b)
         {
             c.force -= p.forceOnJ;
@@ -668,6 +660,33 @@ ContactLoad World::contactLoad(int b) const
             c.force += p.forceOnJ;
             c.torque += p.torqueOnJ;
         }
+    };
+    const int begin = nlist_->bodyBegin(b), end = nlist_->bodyEnd(b);
+    // Only the pairs with contacts carry a force: where the pair loop's
+    // flags are those of these pairs, the others are not read (most of a
+    // drifting field's; the same sums in the same order). The flagged ones
+    // are picked without a branch, a block of them at a time (in a pack a
+    // body's pairs that touch and those that do not come in no order a
+    // branch predictor learns), then summed
+    const std::vector<unsigned char>& flags = nlist_->hasContacts();
+    if (flags.size() != pairs.size())
+    {
+        for (int k = begin; k < end; ++k) add(pairs[nlist_->bodyPair(k)]);
+        return c;
+    }
+    constexpr int block = 32;
+    int touching[block];
+    for (int first = begin; first < end; first += block)
+    {
+        const int last = std::min(end, first + block);
+        int n = 0;
+        for (int k = first; k < last; ++k)
+        {
+            const int pk = nlist_->bodyPair(k);
+            touching[n] = pk;
+            n += flags[pk] != 0;
+        }
+        for (int t = 0; t < n; ++t) add(pairs[touching[t]]);
     }
     return c;
 }
