@@ -489,8 +489,7 @@ int World::contactPairCount() const
 std::size_t World::contactStateBytes() const
 {
     std::size_t n = nlist_ ? nlist_->bytes() : 0;
-    n += staged_.capacity()*sizeof(staged_[0])
-       + newLists_.capacity()*sizeof(newLists_[0]);
+    n += newLists_.capacity()*sizeof(newLists_[0]);
     for (const PairScratch& S : scratch_)
     {
         n += S.contacts.capacity()*sizeof(StoredContact)

@@ -221,7 +221,6 @@ void World::preparePairs()
         S.entries.clear();
         S.listPairs.clear();
     }
-    staged_.resize(nlist_->pairs().size());
     nlist_->hasContacts().resize(nlist_->pairs().size());
     chunkCounts_.resize(maxThreads);
     pairBalance_.resize(maxThreads);
@@ -242,7 +241,7 @@ void World::pairForces(double dtTangential)
     const int nPairs = static_cast<int>(pairs.size());
 
     // Orphaned work-sharing: called inside a parallel region (or by one
-    // thread); staged_ and scratch_ are sized by preparePairs
+    // thread); scratch_ is sized by preparePairs
     {
         // The pools are written below by static chunks of pairs
         const ThreadShare share(nPairs);
@@ -309,7 +308,6 @@ void World::pairForces(double dtTangential)
                 flagContacts(k, p);
                 continue;
             }
-            staged_[k] = {thread, static_cast<int>(S.contacts.size())};
             ++searched;
             nl.spend(p);
             ensureBodyFrame(p.i);
@@ -445,21 +443,18 @@ void World::pairForces(double dtTangential)
         for (int t = 0; t < thread; ++t) offset += chunkCounts_[t].contacts;
 
         // No barrier after this: what follows in the step (body sums) reads
-        // the pairs' forces, not the pools. A pair's header is written only
-        // where it changes (a pair without contacts keeps its line shared
-        // with the thread that reads it next). The chunk of the pair loop:
-        // the headers this thread has just written are in its cache
+        // the pairs' forces, not the pools. The scratch holds the contacts
+        // of this thread's chunk of pairs in pair order (a pair certified
+        // apart has none): one copy. A pair's header is written only where
+        // it changes (a pair without contacts keeps its line shared with
+        // the thread that reads it next). The chunk of the pair loop: the
+        // headers this thread has just written are in its cache
+        std::copy(S.contacts.begin(), S.contacts.end(), nl.contacts().data() + offset);
         for (int k = loopBegin; k < loopEnd; ++k)
         {
             ContactPair& p = pairs[k];
             if (p.firstContact != offset) p.firstContact = offset;
-            if (p.nContacts > 0)
-            {
-                const StoredContact* from =
-                    scratch_[staged_[k][0]].contacts.data() + staged_[k][1];
-                std::copy(from, from + p.nContacts, nl.contacts().data() + p.firstContact);
-                offset += p.nContacts;
-            }
+            offset += p.nContacts;
         }
     }
 }
