@@ -463,7 +463,7 @@ TEST(candidateLists, edgePairsComingIntoReachAreWalkedInTime)
     // a few millimetres apart, then B moved straight at A in steps of
     // 0.25 mm. The terms of every step, the first edge-edge term among
     // them, are those of the full search, bit for bit, from the held list
-    // (an entry evaluated 5 mm late, or its first tests dropping a pair
+    // (an entry evaluated 1 mm late, or its first tests dropping a pair
     // that can touch, fails here)
     const DilatedShape SA = floe(1.0, 0.2), SB = floe(1.4, 1.1);
     std::mt19937_64 rng(97);
