@@ -86,6 +86,39 @@ void expectSameContacts(const FoundContact* a, int na, const FoundContact* b, in
 
 constexpr int maxOut = 64;
 
+//- Where B (shape SB, orientation qB) placed at A's centroid + d dir first
+//  touches A, coming from far away: a scan in steps of 5 mm from the sum
+//  of the bounding radii, then bisection to the rounding of the
+//  coordinates; -1 if B touches at no d above 0. out: room for maxOut
+//  terms (the full search's, overwritten)
+double firstContactDistance
+(
+    const Placed& A,
+    const DilatedShape& SB,
+    const Quat& qB,
+    const Vec3& dir,
+    FoundContact* out
+)
+{
+    const NarrowPhaseSettings none;
+    auto touchesAt = [&](double d)
+    {
+        const Placed B(SB, A.x + d*dir, qB);
+        Vec3 axis = Vec3::Zero();
+        return findContacts(A.view(), B.view(), none, axis, out, maxOut) > 0;
+    };
+    double touching = A.shape->boundingRadius() + SB.boundingRadius();
+    while (touching > 0 && !touchesAt(touching)) touching -= 0.005;
+    if (!(touching > 0)) return -1;
+    double apart = touching + 0.005;
+    for (int k = 0; k < 80; ++k)
+    {
+        const double mid = 0.5*(touching + apart);
+        (touchesAt(mid) ? touching : apart) = mid;
+    }
+    return touching;
+}
+
 } // anonymous namespace
 
 
@@ -399,24 +432,10 @@ TEST(candidateLists, touchingWalkSkipsTheAxesOnlyWhereNoneCanSeparate)
         dir.normalize();
         const Placed A(SA, xA, qA);
         FoundContact full[maxOut], fromList[maxOut];
-        auto touchesAt = [&](double d)
-        {
-            const Placed B(SB, xA + d*dir, qB);
-            Vec3 axis = Vec3::Zero();
-            return findContacts(A.view(), B.view(), none, axis, full, maxOut) > 0;
-        };
-        // The first contact from far away, then the distance where it
-        // begins to within the rounding of the coordinates
-        double apart = SA.boundingRadius() + SB.boundingRadius();
-        double touching = apart;
-        while (touching > 0 && !touchesAt(touching)) touching -= 0.005;
+        // The first contact from far away, to within the rounding of the
+        // coordinates
+        const double touching = firstContactDistance(A, SB, qB, dir, full);
         if (!(touching > 0)) continue;
-        apart = touching + 0.005;
-        for (int k = 0; k < 80; ++k)
-        {
-            const double mid = 0.5*(touching + apart);
-            (touchesAt(mid) ? touching : apart) = mid;
-        }
         for (const double depth : {1e-13, 1e-12, 1e-11, 1e-10, 1e-9, 1e-8, 1e-7, 1e-6})
         {
             const Placed B(SB, xA + (touching - depth)*dir, qB);
@@ -479,23 +498,13 @@ TEST(candidateLists, edgePairsComingIntoReachAreWalkedInTime)
         const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
         const Placed A(SA, xA, qA);
         FoundContact full[maxOut], fromList[maxOut];
-        auto termsAt = [&](double d)
-        {
-            const Placed B(SB, xA + d*dir, qB);
-            Vec3 axis = Vec3::Zero();
-            return findContacts(A.view(), B.view(), none, axis, full, maxOut);
-        };
-        // The first contact, to 1e-9 m
-        double touching = SA.boundingRadius() + SB.boundingRadius();
-        while (touching > 0 && termsAt(touching) == 0) touching -= 0.005;
+        // The first contact, and its one term an edge-edge one
+        const double touching = firstContactDistance(A, SB, qB, dir, full);
         if (!(touching > 0)) continue;
-        double apart = touching + 0.005;
-        while (apart - touching > 1e-9)
-        {
-            const double mid = 0.5*(touching + apart);
-            (termsAt(mid) > 0 ? touching : apart) = mid;
-        }
-        const int nFirst = termsAt(touching);
+        const Placed atContact(SB, xA + touching*dir, qB);
+        Vec3 axisFirst = Vec3::Zero();
+        const int nFirst =
+            findContacts(A.view(), atContact.view(), none, axisFirst, full, maxOut);
         if (!(nFirst == 1 && full[0].g.type == FeaturePair::edgeEdge)) continue;
 
         // The list built 2-5 mm before that contact, then the approach
