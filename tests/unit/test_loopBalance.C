@@ -5,18 +5,29 @@
     LoopBalance: the pair loop's chunks, evened out by the threads' times.
     Synthetic workloads with known costs per item: the chunks always cover
     the range once and in order, the times even out, and one outlier
-    moves a boundary by at most the step's limit. (That the pair loop's
-    results do not depend on the chunks is the thread-count tests' part:
-    1 thread = 2 threads, test_integration.C and others.)
+    moves a boundary by at most the step's limit. Claimed blocks (a thread
+    done with its chunk takes blocks of the others'): under real threads
+    with one of them held up, every item is taken exactly once, the held
+    thread's chunk is partly taken by the others, and the times recorded
+    for part of a chunk are extrapolated to the whole. (That the pair
+    loop's results do not depend on who takes a pair is the thread-count
+    tests' part: 1 thread = 2 threads, test_integration.C and others.)
 \*---------------------------------------------------------------------------*/
 
 #include "LoopBalance.H"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <random>
+#include <thread>
 #include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 using namespace iceDEM;
 
@@ -198,4 +209,102 @@ TEST(LoopBalance, timesAreUsedOnce)
     b.rebalance(2);
     b.chunk(0, 2, n, begin, end);
     EXPECT_EQ(end, moved);
+}
+
+
+TEST(LoopBalance, oneThreadClaimsItsChunkInOrder)
+{
+    LoopBalance b;
+    b.resize(1);
+    std::vector<int> seen;
+    int blocks = 0;
+    forEachClaimedBlock
+    (
+        b, 0, 1, 1000, 64, []{ return 0.0; },
+        [&](int begin, int end, bool own)
+        {
+            EXPECT_TRUE(own);
+            EXPECT_LE(end - begin, 64);
+            for (int k = begin; k < end; ++k) seen.push_back(k);
+            ++blocks;
+        }
+    );
+    ASSERT_EQ(int(seen.size()), 1000);
+    for (int k = 0; k < 1000; ++k) EXPECT_EQ(seen[k], k);
+    EXPECT_EQ(blocks, 16);
+}
+
+
+TEST(LoopBalance, aHeldThreadsBlocksAreTakenByTheOthersEveryItemOnce)
+{
+    #ifdef _OPENMP
+    for (const int T : {2, 3})
+    {
+        const int n = 3000;
+        LoopBalance b;
+        b.resize(T);
+        for (int evaluation = 0; evaluation < 5; ++evaluation)
+        {
+            std::vector<std::atomic<int>> taken(n);
+            for (auto& x : taken) x = 0;
+            std::atomic<int> stolen{0};
+            std::atomic<int> blocks{0};
+            int teamSize = 0;
+            #pragma omp parallel num_threads(T)
+            {
+                const int t = omp_get_thread_num();
+                #pragma omp single
+                teamSize = omp_get_num_threads();
+                forEachClaimedBlock
+                (
+                    b, t, omp_get_num_threads(), n, 32, &omp_get_wtime,
+                    [&](int begin, int end, bool own)
+                    {
+                        for (int k = begin; k < end; ++k) ++taken[k];
+                        ++blocks;
+                        if (!own) ++stolen;
+                        // Thread 0 is held up (another process on its core)
+                        if (t == 0)
+                        {
+                            std::this_thread::sleep_for(std::chrono::microseconds(300));
+                        }
+                    }
+                );
+            }
+            ASSERT_EQ(teamSize, T);
+            for (int k = 0; k < n; ++k)
+            {
+                ASSERT_EQ(taken[k].load(), 1) << "item " << k << ", T " << T;
+            }
+            // Thread 0's chunk (about n/T items, 32 a block at 300 us or
+            // more each) outlasts the others' by far: they take from it
+            EXPECT_GT(stolen.load(), 0) << "T " << T;
+            b.rebalance(T);
+        }
+    }
+    #else
+    GTEST_SKIP() << "built without OpenMP";
+    #endif
+}
+
+
+TEST(LoopBalance, partOfAChunkCountsAsTheWholeAtItsRate)
+{
+    // Thread 0 did half of its 500 items in 1 s (the rest taken from it),
+    // thread 1 all of its 500 in 1 s: as if thread 0 had taken 2 s
+    const int n = 1000;
+    LoopBalance a, b;
+    a.resize(2);
+    b.resize(2);
+    a.record(0, 2, 1.0, 250, 500);
+    a.record(1, 2, 1.0, 500, 500);
+    b.record(0, 2, 2.0);
+    b.record(1, 2, 1.0);
+    a.rebalance(2);
+    b.rebalance(2);
+    int beginA, endA, beginB, endB;
+    a.chunk(0, 2, n, beginA, endA);
+    b.chunk(0, 2, n, beginB, endB);
+    EXPECT_LT(endA, n/2);
+    EXPECT_EQ(endA, endB);
 }

@@ -220,6 +220,7 @@ void World::preparePairs()
         S.lists.clear();
         S.entries.clear();
         S.listPairs.clear();
+        S.segments.clear();
     }
     nlist_->hasContacts().resize(nlist_->pairs().size());
     chunkCounts_.resize(maxThreads);
@@ -243,7 +244,8 @@ void World::pairForces(double dtTangential)
     // Orphaned work-sharing: called inside a parallel region (or by one
     // thread); scratch_ is sized by preparePairs
     {
-        // The pools are written below by static chunks of pairs
+        // The pools are written below by the runs of pairs each thread
+        // searched
         const ThreadShare share(nPairs);
         const int thread = share.thread;
         PairScratch& S = scratch_[thread];
@@ -281,16 +283,7 @@ void World::pairForces(double dtTangential)
 
         int searched = 0;
         int tooDeep = -1;
-        // Contiguous chunks: a thread takes the pairs (sorted by i) of about
-        // the bodies it moved in the step's first loop and sums in the last,
-        // so their lines stay in its cache. Chunks of 64 handed out as
-        // threads came free were 4-17 % slower on every field
-        // (tests/benchmark/README.md, twenty-ninth round). The chunks'
-        // boundaries even out the threads' times (LoopBalance)
-        int loopBegin, loopEnd;
-        pairBalance_.chunk(thread, share.nThreads, nPairs, loopBegin, loopEnd);
-        const double loopStart = wallClock();
-        for (int k = loopBegin; k < loopEnd; ++k)
+        auto searchPair = [&](int k)
         {
             ContactPair& p = pairs[k];
             if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
@@ -306,7 +299,7 @@ void World::pairForces(double dtTangential)
             {
                 if (p.nContacts > 0) clearPairForces(p);
                 flagContacts(k, p);
-                continue;
+                return;
             }
             ++searched;
             nl.spend(p);
@@ -372,8 +365,12 @@ void World::pairForces(double dtTangential)
                 p.deepest = std::max(p.deepest, fc.g.overlap);
             }
             // Beyond the contact model's range (checkOverlapRange): the
-            // first such pair of this thread (the loop's pairs ascend)
-            if (nFound > 0 && tooDeep < 0 && !(p.deepest < dilationSum(p)))
+            // first such pair of this thread's
+            if
+            (
+                nFound > 0 && (tooDeep < 0 || k < tooDeep)
+             && !(p.deepest < dilationSum(p))
+            )
             {
                 tooDeep = k;
             }
@@ -394,34 +391,61 @@ void World::pairForces(double dtTangential)
                 p.featureList = -1;
             }
             flagContacts(k, p);
-        }
-        pairBalance_.record(thread, share.nThreads, wallClock() - loopStart);
+        };
+
+        // Contiguous chunks: a thread takes the pairs (sorted by i) of about
+        // the bodies it moved in the step's first loop and sums in the last,
+        // so their lines stay in its cache. Chunks of 64 handed out as
+        // threads came free were 4-17 % slower on every field
+        // (tests/benchmark/README.md, twenty-ninth round). The chunks'
+        // boundaries even out the threads' times (LoopBalance), and a
+        // thread done with its chunk takes blocks from the back of the
+        // other's. Each block's contacts are a segment of this thread's
+        // scratch (consecutive blocks of its own chunk one segment)
+        std::vector<ContactSegment>& segments = S.segments;
+        forEachClaimedBlock
+        (
+            pairBalance_, thread, share.nThreads, nPairs, pairBlock, &wallClock,
+            [&](int begin, int end, bool)
+            {
+                const int from = static_cast<int>(S.contacts.size());
+                for (int k = begin; k < end; ++k) searchPair(k);
+                const int count = static_cast<int>(S.contacts.size()) - from;
+                if (!segments.empty() && segments.back().end == begin)
+                {
+                    segments.back().end = end;
+                    segments.back().count += count;
+                }
+                else
+                {
+                    segments.push_back({begin, end, from, count, 0});
+                }
+            }
+        );
         #pragma omp barrier
 
         // The contacts' pool in pair order (independent of the thread
-        // count), written in parallel: each thread takes a static chunk of
-        // the pairs, whose offsets in the pool are the sums over the chunks
-        // before it. The pair loop's barrier made every count visible; the
-        // pool's size is the scratch total, so one thread sizes it, and
-        // appends the new feature-pair lists, while the others count their
-        // chunks
+        // count and of who searched which pair), written in parallel: each
+        // thread copies its runs of pairs (segments), whose offsets in the
+        // pool are the sums over the runs before them. The pair loop's
+        // barrier made every count visible; one thread sizes the pool,
+        // places the segments and appends the new feature-pair lists,
+        // while the others post their counts
         #pragma omp master
         {
             std::size_t nContacts = 0;
             for (const PairScratch& T : scratch_) nContacts += T.contacts.size();
             nl.contacts().resize(nContacts);
             contactCount_ = static_cast<int>(nContacts);
+            placeSegments();
             appendNewLists();
             pairBalance_.rebalance(share.nThreads);
         }
 
-        // This thread's contacts are those of its chunk of the pair loop,
-        // in its scratch: no pass over the pairs to count them
         PoolCounts& mine = chunkCounts_[thread];
         mine = PoolCounts();
         mine.searched = searched;
         mine.tooDeep = tooDeep;
-        mine.contacts = static_cast<int>(S.contacts.size());
         #pragma omp barrier
 
         if (thread == 0)
@@ -439,23 +463,53 @@ void World::pairForces(double dtTangential)
             }
         }
 
-        int offset = 0;
-        for (int t = 0; t < thread; ++t) offset += chunkCounts_[t].contacts;
-
         // No barrier after this: what follows in the step (body sums) reads
-        // the pairs' forces, not the pools. The scratch holds the contacts
-        // of this thread's chunk of pairs in pair order (a pair certified
-        // apart has none): one copy. A pair's header is written only where
-        // it changes (a pair without contacts keeps its line shared with
-        // the thread that reads it next). The chunk of the pair loop: the
-        // headers this thread has just written are in its cache
-        std::copy(S.contacts.begin(), S.contacts.end(), nl.contacts().data() + offset);
-        for (int k = loopBegin; k < loopEnd; ++k)
+        // the pairs' forces, not the pools. A segment of the scratch holds
+        // the contacts of a run of pairs in pair order (a pair certified
+        // apart has none): one copy each. A pair's header is written only
+        // where it changes (a pair without contacts keeps its line shared
+        // with the thread that reads it next). The pairs this thread
+        // searched: the headers it has just written are in its cache
+        for (const ContactSegment& g : segments)
         {
-            ContactPair& p = pairs[k];
-            if (p.firstContact != offset) p.firstContact = offset;
-            offset += p.nContacts;
+            std::copy
+            (
+                S.contacts.begin() + g.from,
+                S.contacts.begin() + g.from + g.count,
+                nl.contacts().data() + g.to
+            );
+            int offset = g.to;
+            for (int k = g.begin; k < g.end; ++k)
+            {
+                ContactPair& p = pairs[k];
+                if (p.firstContact != offset) p.firstContact = offset;
+                offset += p.nContacts;
+            }
         }
+    }
+}
+
+
+void World::placeSegments()
+{
+    // The pool holds the contacts in pair order: the segments of all
+    // threads in the order of their pairs, one after the other
+    segmentOrder_.clear();
+    for (int t = 0; t < int(scratch_.size()); ++t)
+    {
+        const std::vector<ContactSegment>& segments = scratch_[t].segments;
+        for (int g = 0; g < int(segments.size()); ++g)
+        {
+            segmentOrder_.push_back({segments[g].begin, t, g});
+        }
+    }
+    std::sort(segmentOrder_.begin(), segmentOrder_.end());
+    int offset = 0;
+    for (const auto& o : segmentOrder_)
+    {
+        ContactSegment& g = scratch_[o[1]].segments[o[2]];
+        g.to = offset;
+        offset += g.count;
     }
 }
 
@@ -511,15 +565,19 @@ void World::sumBodyForces(double dtKick, int slowScale)
     // chunk needs no barrier: contact sums in the body's fixed pair order,
     // body-force models, totals and the second half kick. The chunks are
     // evened out by their times (LoopBalance; the steps with body-force
-    // models and those without apart), from the next evaluation on
+    // models and those without apart), from the next evaluation on, and a
+    // thread done with its chunk takes blocks of the other's
     const bool models = !forceModels_.empty() && slowScale > 0;
     const ThreadShare share(N);
-    LoopBalance& balance = sumBalance_[models ? 1 : 0];
-    int begin, end;
-    balance.chunk(share.thread, share.nThreads, N, begin, end);
-    const double start = wallClock();
-    sumBodyChunk(begin, end, dtKick, slowScale, models);
-    balance.record(share.thread, share.nThreads, wallClock() - start);
+    forEachClaimedBlock
+    (
+        sumBalance_[models ? 1 : 0], share.thread, share.nThreads, N,
+        bodyBlock, &wallClock,
+        [&](int begin, int end, bool)
+        {
+            sumBodyChunk(begin, end, dtKick, slowScale, models);
+        }
+    );
 }
 
 
