@@ -7,8 +7,9 @@
     the range once and in order, the times even out, and one outlier
     moves a boundary by at most the step's limit. Claimed blocks (a thread
     done with its chunk takes blocks of the others'): under real threads
-    with one of them held up, every item is taken exactly once, the held
-    thread's chunk is partly taken by the others, and the times recorded
+    with one of them held up until the others are done, every item is
+    taken exactly once, the held thread's chunk is partly taken by the
+    others, and the times recorded
     for part of a chunk are extrapolated to the whole. (That the pair
     loop's results do not depend on who takes a pair is the thread-count
     tests' part: 1 thread = 2 threads, test_integration.C and others.)
@@ -19,7 +20,6 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <random>
 #include <thread>
@@ -248,37 +248,62 @@ TEST(LoopBalance, aHeldThreadsBlocksAreTakenByTheOthersEveryItemOnce)
             std::vector<std::atomic<int>> taken(n);
             for (auto& x : taken) x = 0;
             std::atomic<int> stolen{0};
-            std::atomic<int> blocks{0};
+            // Threads that called work once (each after opening its
+            // chunk), and threads other than 0 done with their own chunks
+            std::atomic<int> started{0};
+            std::atomic<int> othersDone{0};
             int teamSize = 0;
             #pragma omp parallel num_threads(T)
             {
                 const int t = omp_get_thread_num();
+                const int team = omp_get_num_threads();
                 #pragma omp single
-                teamSize = omp_get_num_threads();
+                teamSize = team;
+                bool first = true;
+                bool ownDone = false;
                 forEachClaimedBlock
                 (
-                    b, t, omp_get_num_threads(), n, 32, &omp_get_wtime,
+                    b, t, team, n, 32, &omp_get_wtime,
                     [&](int begin, int end, bool own)
                     {
+                        if (first)
+                        {
+                            // Every chunk open before anyone looks at it
+                            // (whatever the scheduler does on a busy
+                            // machine): the first block is a thread's own
+                            first = false;
+                            ++started;
+                            while (started.load() < team) std::this_thread::yield();
+                        }
                         for (int k = begin; k < end; ++k) ++taken[k];
-                        ++blocks;
-                        if (!own) ++stolen;
-                        // Thread 0 is held up (another process on its core)
+                        if (!own)
+                        {
+                            ++stolen;
+                            if (!ownDone && t != 0) ++othersDone;
+                            ownDone = true;
+                        }
+                        // Thread 0 is held up (another process on its
+                        // core) in its first block until the others are
+                        // done with their chunks and take from its
                         if (t == 0)
                         {
-                            std::this_thread::sleep_for(std::chrono::microseconds(300));
+                            while (othersDone.load() < team - 1) std::this_thread::yield();
                         }
                     }
                 );
+                // A thread that ended without taking a block (none left)
+                if (t != 0 && !ownDone) ++othersDone;
             }
             ASSERT_EQ(teamSize, T);
             for (int k = 0; k < n; ++k)
             {
                 ASSERT_EQ(taken[k].load(), 1) << "item " << k << ", T " << T;
             }
-            // Thread 0's chunk (about n/T items, 32 a block at 300 us or
-            // more each) outlasts the others' by far: they take from it
-            EXPECT_GT(stolen.load(), 0) << "T " << T;
+            // Thread 0 held its chunk (about n/T items, 32 a block) after
+            // its first block until every other thread had taken a block
+            // not its own, which thread 0's left blocks ensure: at least
+            // one each
+            EXPECT_GE(stolen.load(), T - 1) << "T " << T;
             b.rebalance(T);
         }
     }
