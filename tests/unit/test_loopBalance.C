@@ -9,10 +9,10 @@
     done with its chunk takes blocks of the others'): under real threads
     with one of them held up until the others are done, every item is
     taken exactly once, the held thread's chunk is partly taken by the
-    others, and the times recorded
-    for part of a chunk are extrapolated to the whole. (That the pair
-    loop's results do not depend on who takes a pair is the thread-count
-    tests' part: 1 thread = 2 threads, test_integration.C and others.)
+    others, and the times recorded for part of a chunk are extrapolated to
+    the whole. (That the pair loop's results do not depend on who takes a
+    pair is the thread-count tests' part: 1 thread = 2 threads,
+    test_integration.C and others.)
 \*---------------------------------------------------------------------------*/
 
 #include "LoopBalance.H"
