@@ -286,9 +286,26 @@ void World::pairForces(double dtTangential)
         auto searchPair = [&](int k)
         {
             ContactPair& p = pairs[k];
+            // Ahead of the search: a pair's list header two pairs before
+            // its shapes, so that its entries can be asked for with them
+            if (k + listAhead < nPairs)
+            {
+                const ContactPair& f = pairs[k + listAhead];
+                if (f.featureList >= 0 && !nl.separated(f))
+                {
+                    prefetchRange(oldLists + f.featureList, sizeof(StoredFeatureList));
+                }
+            }
             if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
             {
-                prefetchPair(pairs[k + prefetchAhead]);
+                const ContactPair& f = pairs[k + prefetchAhead];
+                prefetchPair(f);
+                if (f.featureList >= 0)
+                {
+                    const StoredFeatureList& L = oldLists[f.featureList];
+                    prefetchRange(oldEntries + L.firstEntry, L.count*sizeof(FeaturePairEntry));
+                }
+                prefetchRange(oldContacts + f.firstContact, f.nContacts*sizeof(StoredContact));
             }
             // A pair whose separation certificate still holds cannot touch:
             // no narrow phase (nor reads of its bodies' shapes and world
