@@ -188,6 +188,14 @@ World::PairMotion World::pairMotion(const ContactPair& p) const
 }
 
 
+Vec3 World::relativeVelocity(const PairMotion& pm, const Vec3& x) const
+{
+    Vec3 vRel = -(pm.bi->v + pm.omegaI->cross(x - pm.bi->x));
+    if (pm.bj) vRel += pm.bj->v + pm.omegaJ->cross(x - pm.xJ);
+    return vRel;
+}
+
+
 ContactResult World::contactForce
 (
     const PairMotion& pm,
@@ -196,11 +204,26 @@ ContactResult World::contactForce
     double dtTangential
 ) const
 {
-    const Vec3& x = g.point;
-    Vec3 vRel = -(pm.bi->v + pm.omegaI->cross(x - pm.bi->x));
-    if (pm.bj) vRel += pm.bj->v + pm.omegaJ->cross(x - pm.xJ);
-
+    const Vec3 vRel = relativeVelocity(pm, g.point);
     return law_->evaluate(*pm.coeffs, g, pm.mEff, vRel, xi, dtTangential);
+}
+
+
+void World::contactForces
+(
+    const PairMotion& pm,
+    const ContactGeometry& g0,
+    const ContactGeometry& g1,
+    Vec3& xi0,
+    Vec3& xi1,
+    double dtTangential,
+    ContactResult r[2]
+) const
+{
+    const ContactGeometry* const g[2] = {&g0, &g1};
+    const Vec3 vRel[2] = {relativeVelocity(pm, g0.point), relativeVelocity(pm, g1.point)};
+    Vec3* const xi[2] = {&xi0, &xi1};
+    law_->evaluateTwo(*pm.coeffs, g, pm.mEff, vRel, xi, dtTangential, r);
 }
 
 
@@ -355,31 +378,53 @@ void World::pairForces(double dtTangential)
             PairMotion pm{};
             if (nFound > 0) pm = pairMotion(p);
 
-            for (int c = 0; c < nFound; ++c)
+            // Two contacts at a time through the contact law (its square
+            // roots overlap), summed one by one in their order
+            for (int c = 0; c < nFound; c += 2)
             {
-                const FoundContact& fc = found[c];
-                StoredContact sc;
-                sc.featureI = fc.featureA;
-                sc.featureJ = fc.featureB;
-                sc.xi.setZero();
-                for (int m = 0; m < nPrev; ++m)
+                const int two = std::min(2, nFound - c);
+                StoredContact sc[2];
+                ContactResult r[2];
+                for (int l = 0; l < two; ++l)
                 {
-                    if (previous[m].featureI == fc.featureA && previous[m].featureJ == fc.featureB)
+                    const FoundContact& fc = found[c + l];
+                    sc[l].featureI = fc.featureA;
+                    sc[l].featureJ = fc.featureB;
+                    sc[l].xi.setZero();
+                    for (int m = 0; m < nPrev; ++m)
                     {
-                        sc.xi = previous[m].xi;
-                        break;
+                        if
+                        (
+                            previous[m].featureI == fc.featureA
+                         && previous[m].featureJ == fc.featureB
+                        )
+                        {
+                            sc[l].xi = previous[m].xi;
+                            break;
+                        }
                     }
                 }
-                const ContactResult r = contactForce(pm, fc.g, sc.xi, dtTangential);
-                S.contacts.push_back(sc);
-                ++p.nContacts;
+                if (two == 2)
+                {
+                    contactForces(pm, found[c].g, found[c + 1].g, sc[0].xi, sc[1].xi, dtTangential, r);
+                }
+                else
+                {
+                    r[0] = contactForce(pm, found[c].g, sc[0].xi, dtTangential);
+                }
+                for (int l = 0; l < two; ++l)
+                {
+                    const FoundContact& fc = found[c + l];
+                    S.contacts.push_back(sc[l]);
+                    ++p.nContacts;
 
-                const Vec3& x = fc.g.point;
-                p.forceOnJ += r.forceOnJ;
-                p.torqueOnI += (x - pm.bi->x).cross(-r.forceOnJ) - r.coupleOnJ;
-                if (pm.bj) p.torqueOnJ += (x - pm.xJ).cross(r.forceOnJ) + r.coupleOnJ;
-                p.elasticEnergy += r.elasticEnergy;
-                p.deepest = std::max(p.deepest, fc.g.overlap);
+                    const Vec3& x = fc.g.point;
+                    p.forceOnJ += r[l].forceOnJ;
+                    p.torqueOnI += (x - pm.bi->x).cross(-r[l].forceOnJ) - r[l].coupleOnJ;
+                    if (pm.bj) p.torqueOnJ += (x - pm.xJ).cross(r[l].forceOnJ) + r[l].coupleOnJ;
+                    p.elasticEnergy += r[l].elasticEnergy;
+                    p.deepest = std::max(p.deepest, fc.g.overlap);
+                }
             }
             // Beyond the contact model's range (checkOverlapRange): the
             // first such pair of this thread's

@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 namespace iceDEM
 {
@@ -194,6 +197,153 @@ ContactResult ContactLaw::evaluate
     r.elasticEnergy = w*U + sign*(kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
     r.coupleOnJ = -U*g.weightGradient;
     return r;
+}
+
+
+namespace
+{
+
+// Two doubles side by side (the vector extension of GCC and Clang): each
+// operation is the IEEE operation on each lane, so a lane computes what
+// the scalar code computes, to the bit (no contraction: -ffp-contract=off)
+typedef double Double2 __attribute__((vector_size(16)));
+typedef long long Mask2 __attribute__((vector_size(16)));
+
+inline Double2 both(double a)
+{
+    return Double2{a, a};
+}
+
+// Correctly rounded, as std::sqrt
+inline Double2 sqrt2(Double2 a)
+{
+#ifdef __SSE2__
+    return _mm_sqrt_pd(a);
+#else
+    return Double2{std::sqrt(a[0]), std::sqrt(a[1])};
+#endif
+}
+
+// Two 3-vectors, component by component
+struct Vec3x2
+{
+    Double2 x, y, z;
+};
+
+inline Vec3x2 lanes(const Vec3& a, const Vec3& b)
+{
+    return Vec3x2{Double2{a.x(), b.x()}, Double2{a.y(), b.y()}, Double2{a.z(), b.z()}};
+}
+
+inline Vec3 lane(const Vec3x2& a, int k)
+{
+    return Vec3(a.x[k], a.y[k], a.z[k]);
+}
+
+inline Vec3x2 operator*(Double2 s, const Vec3x2& a)
+{
+    return Vec3x2{s*a.x, s*a.y, s*a.z};
+}
+
+inline Vec3x2 operator+(const Vec3x2& a, const Vec3x2& b)
+{
+    return Vec3x2{a.x + b.x, a.y + b.y, a.z + b.z};
+}
+
+inline Vec3x2 operator-(const Vec3x2& a, const Vec3x2& b)
+{
+    return Vec3x2{a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+// Per lane: a where m is set, else b
+inline Vec3x2 select(Mask2 m, const Vec3x2& a, const Vec3x2& b)
+{
+    return Vec3x2{m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
+}
+
+// In Eigen's order for a 3-vector (the first two products, then the third)
+inline Double2 dot(const Vec3x2& a, const Vec3x2& b)
+{
+    return (a.x*b.x + a.y*b.y) + a.z*b.z;
+}
+
+} // anonymous namespace
+
+
+void ContactLaw::evaluateTwo
+(
+    const PairCoefficients& c,
+    const ContactGeometry* const g[2],
+    double mEff,
+    const Vec3 vRel[2],
+    Vec3* const xi[2],
+    double dt,
+    ContactResult r[2]
+) const
+{
+    // evaluate, line by line, on two lanes; its branches are selections,
+    // and a division or root a lane does not take gets a harmless operand
+    // (no floating-point trap in a lane that is discarded)
+    const Double2 zero = both(0.0), one = both(1.0);
+    const Double2 R{equivalentRadius(*g[0]), equivalentRadius(*g[1])};
+    const Double2 delta{g[0]->overlap, g[1]->overlap};
+    const Double2 sqrtRd = sqrt2(R*delta);
+    const Vec3x2 n = lanes(g[0]->normal, g[1]->normal);
+    const Vec3x2 v = lanes(vRel[0], vRel[1]);
+
+    const Double2 vn = dot(v, n);
+    const Double2 Sn = both(2*c.Estar)*sqrtRd;
+    const Double2 elastic = both(4.0/3.0*c.Estar)*sqrtRd*delta;
+    const Double2 damping = both(2*std::sqrt(5.0/6.0)*c.beta)*sqrt2(both(mEff)*Sn);
+    const Double2 w{g[0]->weight, g[1]->weight};
+    const Double2 sign = w < zero ? -one : one;
+    const Double2 wAbs{std::abs(g[0]->weight), std::abs(g[1]->weight)};
+    const Double2 push = elastic - damping*vn;
+    const Double2 FnAbs = wAbs*(zero < push ? push : zero);
+    const Double2 Fn = sign*FnAbs;
+
+    Vec3x2 s = lanes(*xi[0], *xi[1]);
+    const Double2 xiLen = sqrt2(dot(s, s));
+    s = s - dot(s, n)*n;
+    const Double2 xiProj = sqrt2(dot(s, s));
+    const Mask2 rotated = xiProj > zero;
+    s = select(rotated, (xiLen/(rotated ? xiProj : one))*s, s);
+    const Vec3x2 vt = v - vn*n;
+    s = s + both(dt)*vt;
+
+    const Double2 kt =
+        wAbs
+       *(
+            mindlin_
+          ? both(8*c.Gstar)*sqrtRd
+          : both(settings_.tangentialStiffnessRatio)*Sn
+        );
+    Vec3x2 Ft = (-kt)*s;
+    const Double2 FtMax = both(c.friction)*FnAbs;
+    const Double2 FtLen = sqrt2(dot(Ft, Ft));
+    const Mask2 sliding = FtLen > FtMax;
+    const Mask2 capped = sliding & (FtLen > zero);
+    Ft = select(capped, (FtMax/(capped ? FtLen : one))*Ft, Ft);
+    const Mask2 stiff = kt > zero;
+    const Double2 ktOrOne = stiff ? kt : one;
+    const Vec3x2 held{(-Ft.x)/ktOrOne, (-Ft.y)/ktOrOne, (-Ft.z)/ktOrOne};
+    s = select(sliding, select(stiff, held, Vec3x2{zero, zero, zero}), s);
+
+    const Double2 U = both(0.4)*elastic*delta;
+    const Vec3x2 gradX = lanes(g[0]->weightGradientX, g[1]->weightGradientX);
+    const Vec3x2 grad = lanes(g[0]->weightGradient, g[1]->weightGradient);
+    const Vec3x2 forceOnJ = (Fn*n + sign*Ft) - U*gradX;
+    const Double2 spring = stiff ? (both(0.5)*dot(Ft, Ft))/ktOrOne : zero;
+    const Double2 energy = w*U + sign*spring;
+    const Vec3x2 couple = (-U)*grad;
+    for (int k = 0; k < 2; ++k)
+    {
+        *xi[k] = lane(s, k);
+        r[k].forceOnJ = lane(forceOnJ, k);
+        r[k].normalForce = Fn[k];
+        r[k].elasticEnergy = energy[k];
+        r[k].coupleOnJ = lane(couple, k);
+    }
 }
 
 
