@@ -4,11 +4,13 @@
     bit, on random inputs and on inputs placed at the comparisons' edges
     (within a few units in the last place of a tie). The shortcuts skip
     square roots and divisions (tests/benchmark/README.md, thirty-first
-    round); the study's states depend on every decision being the same.
+    round), and the list walk's first pass takes two edge pairs at a time
+    (candidateLists.H, thirty-sixth round); the study's states depend on
+    every decision being the same.
     Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
 \*---------------------------------------------------------------------------*/
 
-#include "contact/excessPotential.H"
+#include "contact/candidateLists.H"
 
 #include <gtest/gtest.h>
 
@@ -217,4 +219,123 @@ TEST(predicates, segmentSegmentInsideGivesThePlainParametersBitForBit)
     EXPECT_GT(inside, n/10);
     std::cout << n << " pairs, " << inside << " inside both, " << edge
               << " within 1e-12 of an end of the second\n";
+}
+
+
+namespace
+{
+
+//- The walk's first pass on two pairs of segments at once (as
+//  candidateLists.H writes it), lane by lane against SegmentPairTest (the pair (x[0], x[1]; x[2], x[3]) in lane 0,
+//  (y[0], ...) in lane 1, and the other way round)
+void expectSameInsideDecisions(const Vec3 x[4], const Vec3 y[4])
+{
+    using twoLanes::lanes;
+    const Vec3* in[2] = {x, y};
+    for (int swap = 0; swap < 2; ++swap)
+    {
+        const Vec3* l0 = in[swap];
+        const Vec3* l1 = in[1 - swap];
+        const twoLanes::Vec3x2 p0 = lanes(l0[0], l1[0]), q0 = lanes(l0[2], l1[2]);
+        twoLanes::Double2 b, e, f, denom, sNum;
+        const auto got = segmentPairMayBeInside
+        (
+            lanes(l0[1], l1[1]) - p0, lanes(l0[3], l1[3]) - q0, p0 - q0,
+            b, e, f, denom, sNum
+        );
+        const bool plain0 = SegmentPairTest(l0[0], l0[1], l0[2], l0[3]).mayBeInside;
+        const bool plain1 = SegmentPairTest(l1[0], l1[1], l1[2], l1[3]).mayBeInside;
+        ASSERT_EQ(got[0] != 0, plain0)
+            << "p0 " << l0[0].transpose() << " p1 " << l0[1].transpose()
+            << " q0 " << l0[2].transpose() << " q1 " << l0[3].transpose();
+        ASSERT_EQ(got[1] != 0, plain1)
+            << "p0 " << l1[0].transpose() << " p1 " << l1[1].transpose()
+            << " q0 " << l1[2].transpose() << " q1 " << l1[3].transpose();
+    }
+}
+
+//- Pairs of segments that cross (seen along their common perpendicular, a
+//  gap h apart) at parameters s, t of their own, the second turned by
+//  angle from the first, at the coordinates of a km-sized pack
+void crossingSegments
+(
+    std::mt19937_64& rng, double s, double t, double angle, Vec3 out[4]
+)
+{
+    std::uniform_real_distribution<double> u(-1, 1);
+    const Vec3 c(500*u(rng), 500*u(rng), 0.5*u(rng));
+    const Vec3 dirA = randomUnit(rng);
+    Vec3 side = randomUnit(rng);
+    side = (side - side.dot(dirA)*dirA).normalized();
+    const Vec3 dirB = std::cos(angle)*dirA + std::sin(angle)*side;
+    const Vec3 gap = 0.05*u(rng)*dirA.cross(side);
+    const double lenA = std::exp(2*u(rng)), lenB = std::exp(2*u(rng));
+    out[0] = c - s*lenA*dirA;
+    out[1] = out[0] + lenA*dirA;
+    out[2] = c + gap - t*lenB*dirB;
+    out[3] = out[2] + lenB*dirB;
+}
+
+} // anonymous namespace
+
+
+TEST(predicates, walkFirstPassTwoAtATimeDecidesAsSegmentPairTest)
+{
+    // Each of the test's three conditions (not parallel, s inside, t not
+    // outside) taken to the input where its decision flips: a parameter
+    // of the family above bisected until the two inputs bracketing the
+    // flip are neighbouring doubles, then those inputs and the ones a
+    // few units in the last place around them, each beside a random pair
+    // in the other lane. Two computations whose rounding differs anywhere
+    // (a sum in another order, a product grouped otherwise) flip at
+    // different inputs
+    std::mt19937_64 rng(36);
+    std::uniform_real_distribution<double> u(-1, 1);
+    long flips = 0, n = 0;
+    for (int trial = 0; trial < 3000; ++trial)
+    {
+        const int condition = trial % 3;
+        // The family: x -> segments; the flip lies in [lo, hi]
+        const std::uint64_t seed = rng();
+        auto family = [&](double x, Vec3 out[4])
+        {
+            std::mt19937_64 same(seed);
+            if (condition == 0) crossingSegments(same, 0.5, 0.5, x, out);
+            else if (condition == 1) crossingSegments(same, x, 0.5, 0.7, out);
+            else crossingSegments(same, 0.5, x, 0.7, out);
+        };
+        // sin^2 of the angle against 1e-12; s across 0; t across 1
+        double lo = condition == 0 ? 0.5e-6 : condition == 1 ? -1e-6 : 1 - 1e-6;
+        double hi = condition == 0 ? 2e-6 : condition == 1 ? 1e-6 : 1 + 1e-6;
+        auto decision = [&](double x)
+        {
+            Vec3 seg[4];
+            family(x, seg);
+            return SegmentPairTest(seg[0], seg[1], seg[2], seg[3]).mayBeInside;
+        };
+        const bool atLo = decision(lo);
+        if (atLo == decision(hi)) continue;
+        ++flips;
+        while (std::nextafter(lo, hi) < hi)
+        {
+            const double mid = lo + 0.5*(hi - lo);
+            if (mid <= lo || mid >= hi) break;
+            (decision(mid) == atLo ? lo : hi) = mid;
+        }
+        for (int k = -3; k <= 3; ++k)
+        {
+            for (const double x : {ulps(lo, k), ulps(hi, k)})
+            {
+                Vec3 seg[4], other[4];
+                family(x, seg);
+                crossingSegments(rng, 0.5 + u(rng), 0.5 + u(rng), u(rng), other);
+                expectSameInsideDecisions(seg, other);
+                if (HasFatalFailure()) return;
+                n += 2;
+            }
+        }
+    }
+    // Nearly every family flips inside its bracket
+    EXPECT_GT(flips, 2900);
+    std::cout << flips << " flips, " << n << " pairs of pairs at them\n";
 }

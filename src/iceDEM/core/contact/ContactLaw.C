@@ -4,12 +4,10 @@
 \*---------------------------------------------------------------------------*/
 
 #include "ContactLaw.H"
+#include "twoLanes.H"
 
 #include <algorithm>
 #include <cmath>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 namespace iceDEM
 {
@@ -200,74 +198,7 @@ ContactResult ContactLaw::evaluate
 }
 
 
-namespace
-{
-
-// Two doubles side by side (the vector extension of GCC and Clang): each
-// operation is the IEEE operation on each lane, so a lane computes what
-// the scalar code computes, to the bit (no contraction: -ffp-contract=off)
-typedef double Double2 __attribute__((vector_size(16)));
-typedef long long Mask2 __attribute__((vector_size(16)));
-
-inline Double2 both(double a)
-{
-    return Double2{a, a};
-}
-
-// Correctly rounded, as std::sqrt
-inline Double2 sqrt2(Double2 a)
-{
-#ifdef __SSE2__
-    return _mm_sqrt_pd(a);
-#else
-    return Double2{std::sqrt(a[0]), std::sqrt(a[1])};
-#endif
-}
-
-// Two 3-vectors, component by component
-struct Vec3x2
-{
-    Double2 x, y, z;
-};
-
-inline Vec3x2 lanes(const Vec3& a, const Vec3& b)
-{
-    return Vec3x2{Double2{a.x(), b.x()}, Double2{a.y(), b.y()}, Double2{a.z(), b.z()}};
-}
-
-inline Vec3 lane(const Vec3x2& a, int k)
-{
-    return Vec3(a.x[k], a.y[k], a.z[k]);
-}
-
-inline Vec3x2 operator*(Double2 s, const Vec3x2& a)
-{
-    return Vec3x2{s*a.x, s*a.y, s*a.z};
-}
-
-inline Vec3x2 operator+(const Vec3x2& a, const Vec3x2& b)
-{
-    return Vec3x2{a.x + b.x, a.y + b.y, a.z + b.z};
-}
-
-inline Vec3x2 operator-(const Vec3x2& a, const Vec3x2& b)
-{
-    return Vec3x2{a.x - b.x, a.y - b.y, a.z - b.z};
-}
-
-// Per lane: a where m is set, else b
-inline Vec3x2 select(Mask2 m, const Vec3x2& a, const Vec3x2& b)
-{
-    return Vec3x2{m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};
-}
-
-// In Eigen's order for a 3-vector (the first two products, then the third)
-inline Double2 dot(const Vec3x2& a, const Vec3x2& b)
-{
-    return (a.x*b.x + a.y*b.y) + a.z*b.z;
-}
-
-} // anonymous namespace
+using namespace twoLanes;
 
 
 void ContactLaw::evaluateTwo
