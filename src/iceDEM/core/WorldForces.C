@@ -71,6 +71,13 @@ void World::ensureBodyFrame(int i)
 }
 
 
+void World::prefetchPairShapes(const ContactPair& p) const
+{
+    prefetchRange(&shapeOf(p.i), sizeof(DilatedShape));
+    if (!p.isWall()) prefetchRange(&shapeOf(p.j), sizeof(DilatedShape));
+}
+
+
 void World::prefetchPair(const ContactPair& p) const
 {
     // What the world frames and the separating-axis test read first: the
@@ -306,30 +313,36 @@ void World::pairForces(double dtTangential)
 
         int searched = 0;
         int tooDeep = -1;
+        SearchAhead ahead;
         auto searchPair = [&](int k)
         {
             ContactPair& p = pairs[k];
-            // Ahead of the search: a pair's list header two pairs before
-            // its shapes, so that its entries can be asked for with them
-            if (k + listAhead < nPairs)
-            {
-                const ContactPair& f = pairs[k + listAhead];
-                if (f.featureList >= 0 && !nl.separated(f))
+            // The data of the next pairs to be searched, asked for ahead
+            ahead.advance
+            (
+                k,
+                [&](int f) { return !nl.separated(pairs[f]); },
+                [&](int f)
                 {
-                    prefetchRange(oldLists + f.featureList, sizeof(StoredFeatureList));
-                }
-            }
-            if (k + prefetchAhead < nPairs && !nl.separated(pairs[k + prefetchAhead]))
-            {
-                const ContactPair& f = pairs[k + prefetchAhead];
-                prefetchPair(f);
-                if (f.featureList >= 0)
+                    const ContactPair& q = pairs[f];
+                    prefetchPairShapes(q);
+                    if (q.featureList >= 0)
+                    {
+                        prefetchRange(oldLists + q.featureList, sizeof(StoredFeatureList));
+                    }
+                },
+                [&](int f)
                 {
-                    const StoredFeatureList& L = oldLists[f.featureList];
-                    prefetchRange(oldEntries + L.firstEntry, L.count*sizeof(FeaturePairEntry));
+                    const ContactPair& q = pairs[f];
+                    prefetchPair(q);
+                    if (q.featureList >= 0)
+                    {
+                        const StoredFeatureList& L = oldLists[q.featureList];
+                        prefetchRange(oldEntries + L.firstEntry, L.count*sizeof(FeaturePairEntry));
+                    }
+                    prefetchRange(oldContacts + q.firstContact, q.nContacts*sizeof(StoredContact));
                 }
-                prefetchRange(oldContacts + f.firstContact, f.nContacts*sizeof(StoredContact));
-            }
+            );
             // A pair whose separation certificate still holds cannot touch:
             // no narrow phase (nor reads of its bodies' shapes and world
             // vertices); its feature-pair list is kept as the narrow phase
@@ -471,6 +484,7 @@ void World::pairForces(double dtTangential)
             [&](int begin, int end, bool)
             {
                 const int from = static_cast<int>(S.contacts.size());
+                ahead.start(begin, end);
                 for (int k = begin; k < end; ++k) searchPair(k);
                 const int count = static_cast<int>(S.contacts.size()) - from;
                 if (!segments.empty() && segments.back().end == begin)
