@@ -3,6 +3,9 @@
     pair loop's path) give what evaluate gives on each, to the bit, in every
     regime: sticking and sliding springs, separating contacts, subtracted
     and fractional terms, a spring with no length, no tangential stiffness.
+    Both are one template (ContactLaw.C, hertzLaw); what differs is what it
+    is built from, per type: the lanes' products, roots and dot products
+    (twoLanes.H) and the selections where one contact branches.
     Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
 \*---------------------------------------------------------------------------*/
 

@@ -128,6 +128,154 @@ std::unique_ptr<ContactLaw> ContactLaw::New(const ContactLawSettings& s)
 }
 
 
+namespace
+{
+
+// The law is one code (hertzLaw) for one contact (double, Vec3) and for two
+// side by side (twoLanes::Double2, Vec3x2): the same operations in the same
+// order on every lane, so that evaluateTwo gives evaluate's results to the
+// bit. Its branches are selections, and a division or root a lane does not
+// take gets a harmless operand (no floating-point trap in a lane that is
+// discarded)
+using twoLanes::sqrtOf;
+using twoLanes::absOf;
+using twoLanes::dotOf;
+
+// Where a contact's branches go, written once per type: a branch for one
+// contact, a selection for two
+//- m ? (num/den) v : v
+inline Vec3 scaledWhere(bool m, double num, double den, const Vec3& v)
+{
+    return m ? Vec3((num/den)*v) : v;
+}
+template<class Mask>
+inline twoLanes::Vec3x2 scaledWhere
+(
+    Mask m, twoLanes::Double2 num, twoLanes::Double2 den, const twoLanes::Vec3x2& v
+)
+{
+    return twoLanes::select(m, (num/(m ? den : twoLanes::both(1.0)))*v, v);
+}
+//- m ? num/den : 0
+inline double quotientWhere(bool m, double num, double den)
+{
+    return m ? num/den : 0.0;
+}
+template<class Mask>
+inline twoLanes::Double2 quotientWhere
+(
+    Mask m, twoLanes::Double2 num, twoLanes::Double2 den
+)
+{
+    return m ? num/(m ? den : twoLanes::both(1.0)) : twoLanes::both(0.0);
+}
+//- Where sliding, the spring that holds the force F (-F/k, none where the
+//  stiffness k is zero); elsewhere xi
+inline Vec3 heldWhere(bool sliding, const Vec3& F, double k, const Vec3& xi)
+{
+    if (!sliding) return xi;
+    return k > 0 ? Vec3(-F/k) : Vec3(Vec3::Zero());
+}
+template<class Mask>
+inline twoLanes::Vec3x2 heldWhere
+(
+    Mask sliding, const twoLanes::Vec3x2& F, twoLanes::Double2 k, const twoLanes::Vec3x2& xi
+)
+{
+    using namespace twoLanes;
+    const auto stiff = k > both(0.0);
+    const Vec3x2 held = (-F)/(stiff ? k : both(1.0));
+    return select(sliding, select(stiff, held, Vec3x2{}), xi);
+}
+
+//- A contact's geometry and motion (one lane's)
+template<class Real, class V>
+struct LawInput
+{
+    Real R;             //!< equivalent radius
+    Real delta;         //!< overlap
+    Real w;             //!< the term's weight (+1, -1 or a fraction)
+    V n;                //!< normal, from i to j
+    V vRel;             //!< velocity of j relative to i at the contact
+    V gradX, grad;      //!< the weight's gradients
+};
+
+//- Its force, couple and energy (one lane's)
+template<class Real, class V>
+struct LawOutput
+{
+    V forceOnJ, coupleOnJ;
+    Real normalForce, elasticEnergy;
+};
+
+template<class Real, class V>
+void hertzLaw
+(
+    const PairCoefficients& c,
+    double mEff,
+    double dt,
+    bool mindlin,
+    double tangentialStiffnessRatio,
+    const LawInput<Real, V>& in,
+    V& xi,
+    LawOutput<Real, V>& out
+)
+{
+    const Real zero{}, one = zero + 1.0;
+    const Real delta = in.delta;
+    const Real sqrtRd = sqrtOf(in.R*delta);
+    const V& n = in.n;
+
+    // Normal: Hertz + viscous damping, never tensile
+    const Real vn = dotOf(in.vRel, n);                  // > 0: separating
+    const Real Sn = 2*c.Estar*sqrtRd;                   // dF/ddelta
+    const Real elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
+    const Real damping = 2*std::sqrt(5.0/6.0)*c.beta*sqrtOf(mEff*Sn);
+    // A term of the excess potential (NarrowPhase.H) carries a sign w = +1
+    // or -1 (a subtracted term): its potential is w U(delta), and its
+    // normal force, damping included, and its tangential spring are those
+    // of a positive term times w (so that a subtracted term cancels the
+    // positive term it duplicates, history and all, while the two
+    // coincide); the friction cap applies to each term's own magnitude.
+    // The weight's gradient (zero for every term of the excess potential)
+    // would give a couple
+    const Real w = in.w;
+    const Real sign = w < zero ? -one : one;
+    const Real wAbs = absOf(w);
+    const Real push = elastic - damping*vn;
+    const Real FnAbs = wAbs*(zero < push ? push : zero);
+    const Real Fn = sign*FnAbs;
+
+    // Tangential spring: rotate into the current tangent plane, keep length
+    const Real xiLen = sqrtOf(dotOf(xi, xi));
+    xi = xi - dotOf(xi, n)*n;
+    const Real xiProj = sqrtOf(dotOf(xi, xi));
+    xi = scaledWhere(xiProj > zero, xiLen, xiProj, xi);
+    const V vt = in.vRel - vn*n;
+    xi = xi + dt*vt;
+
+    const Real kt =
+        wAbs*(mindlin ? 8*c.Gstar*sqrtRd : tangentialStiffnessRatio*Sn);
+    V Ft = (-kt)*xi;
+    const Real FtMax = c.friction*FnAbs;
+    const Real FtLen = sqrtOf(dotOf(Ft, Ft));
+    // Sliding: the spring holds the Coulomb limit
+    const auto sliding = FtLen > FtMax;
+    Ft = scaledWhere(sliding & (FtLen > zero), FtMax, FtLen, Ft);
+    xi = heldWhere(sliding, Ft, kt, xi);
+
+    // Force on j: pushed along +n
+    const Real U = 0.4*elastic*delta;
+    out.forceOnJ = (Fn*n + sign*Ft) - U*in.gradX;
+    out.normalForce = Fn;
+    const Real spring = quotientWhere(kt > zero, 0.5*dotOf(Ft, Ft), kt);
+    out.elasticEnergy = w*U + sign*spring;
+    out.coupleOnJ = (-U)*in.grad;
+}
+
+} // anonymous namespace
+
+
 ContactResult ContactLaw::evaluate
 (
     const PairCoefficients& c,
@@ -138,67 +286,20 @@ ContactResult ContactLaw::evaluate
     double dt
 ) const
 {
-    const double R = equivalentRadius(g);
-    const double delta = g.overlap;
-    const double sqrtRd = std::sqrt(R*delta);
-    const Vec3& n = g.normal;
-
-    // Normal: Hertz + viscous damping, never tensile
-    const double vn = vRel.dot(n);                      // > 0: separating
-    const double Sn = 2*c.Estar*sqrtRd;                 // dF/ddelta
-    const double elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
-    const double damping = 2*std::sqrt(5.0/6.0)*c.beta*std::sqrt(mEff*Sn);
-    // A term of the excess potential (NarrowPhase.H) carries a sign w = +1
-    // or -1 (a subtracted term): its potential is w U(delta), and its
-    // normal force, damping included, and its tangential spring are those
-    // of a positive term times w (so that a subtracted term cancels the
-    // positive term it duplicates, history and all, while the two
-    // coincide); the friction cap applies to each term's own magnitude.
-    // The weight's gradient (zero for every term of the excess potential)
-    // would give a couple
-    const double w = g.weight;
-    const double sign = w < 0 ? -1.0 : 1.0;
-    const double wAbs = std::abs(w);
-    const double FnAbs = wAbs*std::max(0.0, elastic - damping*vn);
-    const double Fn = sign*FnAbs;
-
-    // Tangential spring: rotate into the current tangent plane, keep length
-    const double xiLen = xi.norm();
-    xi -= xi.dot(n)*n;
-    const double xiProj = xi.norm();
-    if (xiProj > 0)
+    const LawInput<double, Vec3> in
     {
-        xi *= xiLen/xiProj;
-    }
-    const Vec3 vt = vRel - vn*n;
-    xi += vt*dt;
-
-    const double kt = wAbs*(mindlin_ ? 8*c.Gstar*sqrtRd : settings_.tangentialStiffnessRatio*Sn);
-    Vec3 Ft = -kt*xi;
-    const double FtMax = c.friction*FnAbs;
-    const double FtLen = Ft.norm();
-    if (FtLen > FtMax)
-    {
-        // Sliding: the spring holds the Coulomb limit
-        if (FtLen > 0)
-        {
-            Ft *= FtMax/FtLen;
-        }
-        xi = kt > 0 ? Vec3(-Ft/kt) : Vec3(Vec3::Zero());
-    }
-
+        equivalentRadius(g), g.overlap, g.weight, g.normal, vRel,
+        g.weightGradientX, g.weightGradient
+    };
+    LawOutput<double, Vec3> out;
+    hertzLaw(c, mEff, dt, mindlin_, settings_.tangentialStiffnessRatio, in, xi, out);
     ContactResult r;
-    // Force on j: pushed along +n
-    const double U = 0.4*elastic*delta;
-    r.forceOnJ = Fn*n + sign*Ft - U*g.weightGradientX;
-    r.normalForce = Fn;
-    r.elasticEnergy = w*U + sign*(kt > 0 ? 0.5*Ft.squaredNorm()/kt : 0.0);
-    r.coupleOnJ = -U*g.weightGradient;
+    r.forceOnJ = out.forceOnJ;
+    r.normalForce = out.normalForce;
+    r.elasticEnergy = out.elasticEnergy;
+    r.coupleOnJ = out.coupleOnJ;
     return r;
 }
-
-
-using namespace twoLanes;
 
 
 void ContactLaw::evaluateTwo
@@ -212,68 +313,27 @@ void ContactLaw::evaluateTwo
     ContactResult r[2]
 ) const
 {
-    // evaluate, line by line, on two lanes; its branches are selections,
-    // and a division or root a lane does not take gets a harmless operand
-    // (no floating-point trap in a lane that is discarded)
-    const Double2 zero = both(0.0), one = both(1.0);
-    const Double2 R{equivalentRadius(*g[0]), equivalentRadius(*g[1])};
-    const Double2 delta{g[0]->overlap, g[1]->overlap};
-    const Double2 sqrtRd = sqrt2(R*delta);
-    const Vec3x2 n = lanes(g[0]->normal, g[1]->normal);
-    const Vec3x2 v = lanes(vRel[0], vRel[1]);
-
-    const Double2 vn = dot(v, n);
-    const Double2 Sn = both(2*c.Estar)*sqrtRd;
-    const Double2 elastic = both(4.0/3.0*c.Estar)*sqrtRd*delta;
-    const Double2 damping = both(2*std::sqrt(5.0/6.0)*c.beta)*sqrt2(both(mEff)*Sn);
-    const Double2 w{g[0]->weight, g[1]->weight};
-    const Double2 sign = w < zero ? -one : one;
-    const Double2 wAbs{std::abs(g[0]->weight), std::abs(g[1]->weight)};
-    const Double2 push = elastic - damping*vn;
-    const Double2 FnAbs = wAbs*(zero < push ? push : zero);
-    const Double2 Fn = sign*FnAbs;
-
+    using namespace twoLanes;
+    const LawInput<Double2, Vec3x2> in
+    {
+        Double2{equivalentRadius(*g[0]), equivalentRadius(*g[1])},
+        Double2{g[0]->overlap, g[1]->overlap},
+        Double2{g[0]->weight, g[1]->weight},
+        lanes(g[0]->normal, g[1]->normal),
+        lanes(vRel[0], vRel[1]),
+        lanes(g[0]->weightGradientX, g[1]->weightGradientX),
+        lanes(g[0]->weightGradient, g[1]->weightGradient)
+    };
     Vec3x2 s = lanes(*xi[0], *xi[1]);
-    const Double2 xiLen = sqrt2(dot(s, s));
-    s = s - dot(s, n)*n;
-    const Double2 xiProj = sqrt2(dot(s, s));
-    const Mask2 rotated = xiProj > zero;
-    s = select(rotated, (xiLen/(rotated ? xiProj : one))*s, s);
-    const Vec3x2 vt = v - vn*n;
-    s = s + both(dt)*vt;
-
-    const Double2 kt =
-        wAbs
-       *(
-            mindlin_
-          ? both(8*c.Gstar)*sqrtRd
-          : both(settings_.tangentialStiffnessRatio)*Sn
-        );
-    Vec3x2 Ft = (-kt)*s;
-    const Double2 FtMax = both(c.friction)*FnAbs;
-    const Double2 FtLen = sqrt2(dot(Ft, Ft));
-    const Mask2 sliding = FtLen > FtMax;
-    const Mask2 capped = sliding & (FtLen > zero);
-    Ft = select(capped, (FtMax/(capped ? FtLen : one))*Ft, Ft);
-    const Mask2 stiff = kt > zero;
-    const Double2 ktOrOne = stiff ? kt : one;
-    const Vec3x2 held{(-Ft.x)/ktOrOne, (-Ft.y)/ktOrOne, (-Ft.z)/ktOrOne};
-    s = select(sliding, select(stiff, held, Vec3x2{zero, zero, zero}), s);
-
-    const Double2 U = both(0.4)*elastic*delta;
-    const Vec3x2 gradX = lanes(g[0]->weightGradientX, g[1]->weightGradientX);
-    const Vec3x2 grad = lanes(g[0]->weightGradient, g[1]->weightGradient);
-    const Vec3x2 forceOnJ = (Fn*n + sign*Ft) - U*gradX;
-    const Double2 spring = stiff ? (both(0.5)*dot(Ft, Ft))/ktOrOne : zero;
-    const Double2 energy = w*U + sign*spring;
-    const Vec3x2 couple = (-U)*grad;
+    LawOutput<Double2, Vec3x2> out;
+    hertzLaw(c, mEff, dt, mindlin_, settings_.tangentialStiffnessRatio, in, s, out);
     for (int k = 0; k < 2; ++k)
     {
         *xi[k] = lane(s, k);
-        r[k].forceOnJ = lane(forceOnJ, k);
-        r[k].normalForce = Fn[k];
-        r[k].elasticEnergy = energy[k];
-        r[k].coupleOnJ = lane(couple, k);
+        r[k].forceOnJ = lane(out.forceOnJ, k);
+        r[k].normalForce = out.normalForce[k];
+        r[k].elasticEnergy = out.elasticEnergy[k];
+        r[k].coupleOnJ = lane(out.coupleOnJ, k);
     }
 }
 
