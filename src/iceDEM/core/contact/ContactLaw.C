@@ -134,15 +134,14 @@ namespace
 // The law is one code (hertzLaw) for one contact (double, Vec3) and for two
 // side by side (twoLanes::Double2, Vec3x2): the same operations in the same
 // order on every lane, so that evaluateTwo gives evaluate's results to the
-// bit. Its branches are selections, and a division or root a lane does not
-// take gets a harmless operand (no floating-point trap in a lane that is
-// discarded)
+// bit. Where it branches, the helpers below are written once per type: a
+// branch for one contact, a selection for two, where a division a lane does
+// not take gets a harmless operand (no floating-point trap in a lane that
+// is discarded)
 using twoLanes::sqrtOf;
 using twoLanes::absOf;
 using twoLanes::dotOf;
 
-// Where a contact's branches go, written once per type: a branch for one
-// contact, a selection for two
 //- m ? (num/den) v : v
 inline Vec3 scaledWhere(bool m, double num, double den, const Vec3& v)
 {
