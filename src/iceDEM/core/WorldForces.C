@@ -81,13 +81,13 @@ void World::prefetchPairShapes(const ContactPair& p) const
 void World::prefetchPair(const ContactPair& p) const
 {
     // What the world frames and the separating-axis test read first: the
-    // two shapes' headers and vertices, and the world vertices (body j is
-    // anywhere in memory)
+    // two shapes' vertices (found from their headers, asked for earlier by
+    // prefetchPairShapes) and the world vertices (body j is anywhere in
+    // memory)
     auto prefetchBody = [this](int i)
     {
         const auto& V = shapeOf(i).core().vertices();
         const std::size_t bytes = V.size()*sizeof(Vec3);
-        prefetchRange(&shapeOf(i), sizeof(DilatedShape));
         prefetchRange(V.data(), bytes);
         prefetchRange(worldVertices(i), bytes);
     };
