@@ -232,7 +232,7 @@ void Foam::iceDEMCase::removeBodies(const std::vector<bool>& remove)
             << "Bodies can only be removed before the DEM starts" << nl
             << exit(FatalError);
     }
-    wordList kept;
+    DynamicList<word> kept(bodyNames_.size());
     forAll(bodyNames_, i)
     {
         if (size_t(i) >= remove.size() || !remove[i])
