@@ -10,6 +10,7 @@
 
 #include <omp.h>
 
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -280,6 +281,37 @@ TEST(rotation, torqueFreeAsymmetricBodyFollowsEulersEquations)
     EXPECT_LT((wSim - wb).norm(), 1e-2*wb.norm()) << wSim.transpose() << " vs " << wb.transpose();
 }
 
+
+
+// transposeTimes sums each component as Eigen's R^T v does, so the
+// rotations, frames and hydro models that use it kept their results to the
+// bit: the same bits as the product, over rotations of every size of angle
+// and vectors of every scale, and not those of a sum in another order
+TEST(rotation, transposeTimesHasTheBitsOfEigensProduct)
+{
+    std::mt19937_64 rng(2026);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int reordered = 0;
+    for (int k = 0; k < 100000; ++k)
+    {
+        Quat q(u(rng), u(rng), u(rng), u(rng));
+        if (q.norm() < 1e-3) continue;
+        q.normalize();
+        const Mat3 R = q.toRotationMatrix();
+        const double scale = std::pow(10.0, 12*u(rng));
+        const Vec3 v(scale*u(rng), scale*u(rng), scale*u(rng));
+        const Vec3 expected = R.transpose()*v;
+        const Vec3 got = transposeTimes(R, v);
+        for (int c = 0; c < 3; ++c)
+        {
+            ASSERT_EQ(got[c], expected[c]) << "component " << c << " of case " << k;
+        }
+        // Summed from the last term: differs somewhere (the test can fail)
+        const double other = R(2, 0)*v[2] + R(1, 0)*v[1] + R(0, 0)*v[0];
+        reordered += other != expected[0];
+    }
+    EXPECT_GT(reordered, 1000);
+}
 
 
 TEST(invariants, resultsDoNotDependOnTheNumberOfThreads)
