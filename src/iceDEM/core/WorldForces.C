@@ -41,7 +41,7 @@ void World::updateBodyFrame(int i)
 {
     const Body& b = bodies_[i];
     const Mat3 R = b.rotation();
-    omegas_[i] = R*(b.invInertia.cwiseProduct(transposeTimes(R, b.L)));
+    omegas_[i] = b.omega(R);
     const auto& V = shapeOf(i).core().vertices();
     Vec3* w = worldVertices_.data() + vertexOffset_[i];
     for (std::size_t k = 0; k < V.size(); ++k)

@@ -597,15 +597,12 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         if (frame.valid())
         {
             if (!frame.wet()) return;
-            const Mat3& R = frame.R;
-            const Vec3 omega =
-                R*(b.invInertia.cwiseProduct(transposeTimes(R, b.L)));
-            frameDrag(P, frame, b, omega, current, F, M);
+            frameDrag(P, frame, b, b.omega(frame.R), current, F, M);
             return;
         }
     }
     const Mat3 R = b.rotation();
-    const Vec3 omega = R*(b.invInertia.cwiseProduct(transposeTimes(R, b.L)));
+    const Vec3 omega = b.omega(R);
 
     // Two-way coupling: the drag per face for the flow (this thread's
     // buffers grow to the largest floe once, then allocate nothing)

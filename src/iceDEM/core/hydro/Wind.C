@@ -188,7 +188,7 @@ void Wind::bodyWind
     static thread_local PolyhedronBuffer outerBuffer;
     const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
     const Mat3 R = b.rotation();
-    const Vec3 omega = R*(b.invInertia.cwiseProduct(transposeTimes(R, b.L)));
+    const Vec3 omega = b.omega(R);
 
     if (settings_.integration == DragIntegration::exact)
     {
