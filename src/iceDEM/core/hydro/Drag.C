@@ -211,10 +211,13 @@ bool skinClosedForm
         if (p2 > 0)
         {
             // asinh(t2/|p|) - asinh(t1/|p|) = log(f(t2)/f(t1)) with
-            // f = t + r, written p^2/(r - t) for t < 0 (no cancellation)
+            // f = t + r, written p^2/(r - t) for t < 0 (no cancellation).
+            // An end on the centre of rotation (a floe turning about its
+            // vertex) has f = 0 and r = 0: p is round-off there and the
+            // term's limit zero (it was log(0), a floating-point trap)
             const double f1 = t1 >= 0 ? t1 + r1 : p2/(r1 - t1);
             const double f2 = t2 >= 0 ? t2 + r2 : p2/(r2 - t2);
-            J += 0.375*p2*p2*std::log(f2/f1);
+            if (f1 > 0 && f2 > 0) J += 0.375*p2*p2*std::log(f2/f1);
         }
         G += (J/3.0)*nu;
         H += (J/5.0)*p;
