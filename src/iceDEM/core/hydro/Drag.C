@@ -407,7 +407,9 @@ void addFacetDrag
 (
     const Vec3* q,
     int m,
-    const Vec3& nrm,
+    double nx,
+    double ny,
+    double nz,
     bool skin,
     double coeff,
     const Vec3& w,
@@ -416,6 +418,7 @@ void addFacetDrag
     Vec3& M
 )
 {
+    const Vec3 nrm(nx, ny, nz);
     if (skin)
     {
         // Skin drag |u_t| u_t: not a polynomial, but in closed form for a
