@@ -164,6 +164,7 @@ void World::stepBy(double dt)
     const bool oneRegion = forceModels_.empty() || !slowStep;
     const bool listCoversBodies = nlist_->coversBodies(bodies_.size());
     bool rebuild = !listCoversBodies;
+    if (listCoversBodies) nlist_->advanceDrift(dt);
     const bool periodic = domain_ != nullptr;
     bool wrappedAny = false;
 

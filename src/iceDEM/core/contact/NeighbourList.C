@@ -48,11 +48,12 @@ void NeighbourList::build(const World& world)
     candidates_.clear();
     extras_.clear();
 
-    std::vector<double> R(N);
+    radius_.resize(N);
     for (int i = 0; i < N; ++i)
     {
-        R[i] = world.shapeOf(i).boundingRadius();
+        radius_[i] = world.shapeOf(i).boundingRadius();
     }
+    const std::vector<double>& R = radius_;
 
     auto movable = [&](int i, int j)
     {
@@ -455,6 +456,20 @@ void NeighbourList::build(const World& world)
         poseAtBuild_[i] = BuildPose{bodies[i].q, bodies[i].x, R[i]};
     }
     motion_.assign(N, 0);
+
+    // A new drifting frame: the free bodies' mean velocity (summed in body
+    // order: the same whatever the threads)
+    Vec3 sum = Vec3::Zero();
+    int nFree = 0;
+    for (const Body& b : bodies)
+    {
+        if (!b.isFree()) continue;
+        sum += b.v;
+        ++nFree;
+    }
+    driftVelocity_ = nFree > 0 ? Vec3(sum/nFree) : Vec3::Zero();
+    drift_.setZero();
+    driftLength_ = 0;
 }
 
 
