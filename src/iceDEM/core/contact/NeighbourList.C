@@ -453,7 +453,7 @@ void NeighbourList::build(const World& world)
     poseAtBuild_.resize(N);
     for (int i = 0; i < N; ++i)
     {
-        poseAtBuild_[i] = BuildPose{bodies[i].q, bodies[i].x, R[i]};
+        poseAtBuild_[i] = BuildPose{bodies[i].q, bodies[i].x};
     }
     motion_.assign(N, 0);
 
