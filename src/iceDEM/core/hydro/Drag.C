@@ -152,24 +152,79 @@ bool skinIntegralConical
 namespace
 {
 
-//- skinIntegralClosedForm about the polygon's centroid (given)
-bool skinClosedForm
+//- A polygon in its plane's axes, for the skin integrals: ex (any unit
+//  vector across n) and ey = n x ex, the vertices' coordinates (x, y)
+//  relative to the centroid, the centroid (in q's frame) and the largest
+//  squared centroid-vertex distance. The integrands are functions of the
+//  position in the plane, so two coordinates a vertex carry them: an
+//  edge's outward normal is tau x n = (tau_y, -tau_x), no cross product
+struct SkinPlane
+{
+    static constexpr int cap = SubmergedFace::maxVertices + 1;
+    Vec3 ex, ey;
+    Vec3 centroid;
+    int m = 0;
+    double x[cap], y[cap];
+    double a2 = 0;
+
+    //- The point of the plane at (u, v) from the centroid
+    Vec3 inPlane(double u, double v) const { return u*ex + v*ey; }
+};
+
+//- The plane of the polygon q[0..m) (normal n); false for fewer than 3 or
+//  more than SubmergedFace::maxVertices + 1 vertices or no positive area
+bool skinPlane(const Vec3* q, int m, const Vec3& n, SkinPlane& P)
+{
+    if (m < 3 || m > SkinPlane::cap) return false;
+    P.m = m;
+    P.ex = n.unitOrthogonal();
+    P.ey = n.cross(P.ex);
+    // Coordinates from q[0], then the fan's area and centroid from there
+    for (int k = 0; k < m; ++k)
+    {
+        const Vec3 e = q[k] - q[0];
+        P.x[k] = e.dot(P.ex);
+        P.y[k] = e.dot(P.ey);
+    }
+    double A2 = 0, cx = 0, cy = 0;
+    for (int k = 1; k + 1 < m; ++k)
+    {
+        const double a = P.x[k]*P.y[k + 1] - P.x[k + 1]*P.y[k];
+        A2 += a;
+        cx += a*(P.x[k] + P.x[k + 1]);
+        cy += a*(P.y[k] + P.y[k + 1]);
+    }
+    if (!(A2 > 0)) return false;
+    cx /= 3*A2;
+    cy /= 3*A2;
+    P.centroid = q[0] + P.inPlane(cx, cy);
+    P.a2 = 0;
+    for (int k = 0; k < m; ++k)
+    {
+        P.x[k] -= cx;
+        P.y[k] -= cy;
+        P.a2 = std::max(P.a2, P.x[k]*P.x[k] + P.y[k]*P.y[k]);
+    }
+    return true;
+}
+
+//- The skin integrals in closed form (skinIntegralClosedForm) on the plane
+//  P of normal n; U = (Ux, Uy) the tangential velocity at the centroid,
+//  Om = omega.n (nonzero)
+void skinClosedForm
 (
-    const Vec3* q,
-    int m,
-    const Vec3& centroid,
+    const SkinPlane& P,
     const Vec3& n,
-    const Vec3& w,
-    const Vec3& omega,
+    double Ux,
+    double Uy,
+    double Om,
     Vec3& I,
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
     // On the plane, u_t = U + Omega n x e (e from the centroid): a rotation
-    // by Omega = omega.n about the point e0 = n x U/Omega, so with
-    // d = e - e0, |u_t| u_t = Omega |Omega| |d| n x d and
+    // by Omega about the point e0 = n x U/Omega, so with d = e - e0,
+    // |u_t| u_t = Omega |Omega| |d| n x d and
     //   int |u_t| u_t dA = Omega |Omega| n x G,   G = int |d| d dA,
     //   int e x |u_t| u_t dA = Omega |Omega| (e0 x (n x G) + n H),
     //   H = int |d|^3 dA.
@@ -179,31 +234,28 @@ bool skinClosedForm
     // nu the edge's outward normal, p = d.nu its distance from e0, and with
     // t along the edge, r = |d| = sqrt(t^2 + p^2):
     //   J = [t r^3/4 + 3 p^2 t r/8 + 3 p^4/8 asinh(t/|p|)] between its ends.
-    const double Om = omega.dot(n);
-    if (Om == 0) return false;
-    const Vec3 U = tangential(w + omega.cross(centroid), n);
-    const Vec3 e0 = n.cross(U)/Om;
-
-    Vec3 d[SubmergedFace::maxVertices + 1];
-    double r[SubmergedFace::maxVertices + 1];
+    // In the plane's axes n x (a, b) = (-b, a): e0 = (-Uy, Ux)/Omega
+    const double e0x = -Uy/Om, e0y = Ux/Om;
+    const int m = P.m;
+    double dx[SkinPlane::cap], dy[SkinPlane::cap], r[SkinPlane::cap];
     for (int k = 0; k < m; ++k)
     {
-        d[k] = q[k] - centroid - e0;
-        r[k] = d[k].norm();
+        dx[k] = P.x[k] - e0x;
+        dy[k] = P.y[k] - e0y;
+        r[k] = std::sqrt(dx[k]*dx[k] + dy[k]*dy[k]);
     }
-    Vec3 G = Vec3::Zero();
-    double H = 0;
+    double Gx = 0, Gy = 0, H = 0;
     for (int k = 0; k < m; ++k)
     {
         const int k1 = k + 1 == m ? 0 : k + 1;
-        const Vec3 E = d[k1] - d[k];
-        const double L = E.norm();
-        if (!(L > 0)) continue;
-        const Vec3 tau = E/L;
-        const Vec3 nu = tau.cross(n);
-        const double p = d[k].dot(nu);
+        const double Ex = dx[k1] - dx[k], Ey = dy[k1] - dy[k];
+        const double L2 = Ex*Ex + Ey*Ey;
+        if (!(L2 > 0)) continue;
+        const double invL = 1/std::sqrt(L2);
+        const double tx = Ex*invL, ty = Ey*invL;
+        const double p = dx[k]*ty - dy[k]*tx;
         const double p2 = p*p;
-        const double t1 = d[k].dot(tau), t2 = d[k1].dot(tau);
+        const double t1 = dx[k]*tx + dy[k]*ty, t2 = dx[k1]*tx + dy[k1]*ty;
         const double r1 = r[k], r2 = r[k1];
         double J =
             0.25*(t2*r2*r2*r2 - t1*r1*r1*r1)
@@ -219,30 +271,30 @@ bool skinClosedForm
             const double f2 = t2 >= 0 ? t2 + r2 : p2/(r2 - t2);
             if (f1 > 0 && f2 > 0) J += 0.375*p2*p2*std::log(f2/f1);
         }
-        G += (J/3.0)*nu;
-        H += (J/5.0)*p;
+        // nu = (ty, -tx); the sums' 1/3 and 1/5 after the loop
+        Gx += J*ty;
+        Gy -= J*tx;
+        H += J*p;
     }
+    Gx /= 3.0;
+    Gy /= 3.0;
+    H /= 5.0;
     const double s = Om*std::abs(Om);
-    I = s*n.cross(G);
-    Ir = centroid.cross(I) + s*(e0.cross(n.cross(G)) + H*n);
-    return true;
+    // n x G = (-Gy, Gx); e0 x (n x G) = (e0.G) n
+    I = s*P.inPlane(-Gy, Gx);
+    Ir = P.centroid.cross(I) + (s*(e0x*Gx + e0y*Gy + H))*n;
 }
 
-} // anonymous namespace
-
-
-namespace
-{
-
-//- skinIntegralExpansion about the polygon's centroid (given)
+//- The skin integrals' expansion about the centroid's velocity
+//  (skinIntegralExpansion) on the plane P of normal n; U = (Ux, Uy) the
+//  tangential velocity at the centroid (nonzero), Om = omega.n
 void skinExpansion
 (
-    const Vec3* q,
-    int m,
-    const Vec3& centroid,
+    const SkinPlane& P,
     const Vec3& n,
-    const Vec3& w,
-    const Vec3& omega,
+    double Ux,
+    double Uy,
+    double Om,
     Vec3& I,
     Vec3& Ir
 )
@@ -262,36 +314,24 @@ void skinExpansion
     //     = c (Sxx + 2 Syy) - c^2 (3/2 Sxxy + Syyy) + c^3 Sxxxx/2.
     // Relative error at most about 5/8 (|c| a)^4 (a the largest centroid-
     // vertex distance): 6e-9 where skinIntegral takes it (|c| a < 1/100).
-    I.setZero();
-    Ir.setZero();
-    const Vec3 U = tangential(w + omega.cross(centroid), n);
-    const double s2 = U.squaredNorm();
-    if (!(s2 > 0))
-    {
-        // No tangential velocity at the centroid and (as skinIntegral
-        // takes this path) no spin about n: u_t vanishes on the polygon
-        return;
-    }
+    const double s2 = Ux*Ux + Uy*Uy;
     const double s = std::sqrt(s2);
-    const Vec3 eu = U/s;
-    const Vec3 ev = n.cross(eu);
-    const double c = omega.dot(n)/s;
+    // eu and ev = n x eu in the plane's axes
+    const double eux = Ux/s, euy = Uy/s;
+    const double c = Om/s;
 
     // The polygon's moments about its centroid by its edges: each edge and
     // the centroid span a triangle of twice-area D, over which
     // int x^k dA = D/((k + 1)(k + 2)) sum_{i=0..k} x0^i x1^(k-i)
-    double x0 = 0, y0 = 0;
-    {
-        const Vec3 e = q[m - 1] - centroid;
-        x0 = e.dot(eu);
-        y0 = e.dot(ev);
-    }
+    const int m = P.m;
+    double x0 = P.x[m - 1]*eux + P.y[m - 1]*euy;
+    double y0 = P.y[m - 1]*eux - P.x[m - 1]*euy;
     double A2 = 0, Sxx = 0, Syy = 0, Sxy = 0, Sxxx = 0, Sxxy = 0, Syyy = 0,
         Sxxxx = 0;
     for (int k = 0; k < m; ++k)
     {
-        const Vec3 e = q[k] - centroid;
-        const double x1 = e.dot(eu), y1 = e.dot(ev);
+        const double x1 = P.x[k]*eux + P.y[k]*euy;
+        const double y1 = P.y[k]*eux - P.x[k]*euy;
         const double D = x0*y1 - x1*y0;
         const double xx0 = x0*x0, xx1 = x1*x1, x01 = x0*x1;
         const double yy0 = y0*y0, yy1 = y1*y1;
@@ -319,15 +359,34 @@ void skinExpansion
     Sxxxx /= 30;
 
     const double c2 = c*c;
-    I = s2*
-    (
-        (A + c2*(Syy + 0.5*Sxx))*eu + (c2*(0.5*c*Sxxx - Sxy))*ev
-    );
+    const double Iu = s2*(A + c2*(Syy + 0.5*Sxx));
+    const double Iv = s2*(c2*(0.5*c*Sxxx - Sxy));
+    // Iu eu + Iv ev, ev = (-euy, eux)
+    I = P.inPlane(Iu*eux - Iv*euy, Iu*euy + Iv*eux);
     const double Mn = s2*
     (
         c*(Sxx + 2*Syy) - c2*(1.5*Sxxy + Syyy) + 0.5*c2*c*Sxxxx
     );
-    Ir = centroid.cross(I) + Mn*n;
+    Ir = P.centroid.cross(I) + Mn*n;
+}
+
+//- The tangential velocity at the plane's centroid in its axes, and
+//  Omega = omega.n
+inline void centroidVelocity
+(
+    const SkinPlane& P,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    double& Ux,
+    double& Uy,
+    double& Om
+)
+{
+    const Vec3 u = w + omega.cross(P.centroid);
+    Ux = u.dot(P.ex);
+    Uy = u.dot(P.ey);
+    Om = omega.dot(n);
 }
 
 } // anonymous namespace
@@ -344,9 +403,17 @@ bool skinIntegralExpansion
     Vec3& Ir
 )
 {
-    Vec3 centroid;
-    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
-    skinExpansion(q, m, centroid, n, w, omega, I, Ir);
+    I.setZero();
+    Ir.setZero();
+    SkinPlane P;
+    if (!skinPlane(q, m, n, P)) return false;
+    double Ux, Uy, Om;
+    centroidVelocity(P, n, w, omega, Ux, Uy, Om);
+    // No tangential velocity at the centroid: the expansion has no axis
+    // (skinIntegral takes it only where the spin about n vanishes too, and
+    // then u_t vanishes on the polygon)
+    if (!(Ux*Ux + Uy*Uy > 0)) return true;
+    skinExpansion(P, n, Ux, Uy, Om, I, Ir);
     return true;
 }
 
@@ -362,9 +429,15 @@ bool skinIntegralClosedForm
     Vec3& Ir
 )
 {
-    Vec3 centroid;
-    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
-    return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
+    I.setZero();
+    Ir.setZero();
+    SkinPlane P;
+    if (!skinPlane(q, m, n, P)) return false;
+    double Ux, Uy, Om;
+    centroidVelocity(P, n, w, omega, Ux, Uy, Om);
+    if (Om == 0) return false;
+    skinClosedForm(P, n, Ux, Uy, Om, I, Ir);
+    return true;
 }
 
 
@@ -383,22 +456,22 @@ bool skinIntegral
     // centre of rotation is D far from a polygon of size a; there the field
     // is nearly uniform and its expansion about the centroid's velocity
     // errs by at most about 5/8 (a/D)^4 (skinExpansion)
-    Vec3 centroid;
-    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
-    double a2 = 0;
-    for (int k = 0; k < m; ++k)
-    {
-        a2 = std::max(a2, (q[k] - centroid).squaredNorm());
-    }
-    const double Om = omega.dot(n);
-    const Vec3 U = tangential(w + omega.cross(centroid), n);
-    const double D2 = U.squaredNorm();
+    I.setZero();
+    Ir.setZero();
+    SkinPlane P;
+    if (!skinPlane(q, m, n, P)) return false;
+    double Ux, Uy, Om;
+    centroidVelocity(P, n, w, omega, Ux, Uy, Om);
+    const double D2 = Ux*Ux + Uy*Uy;
     const double k2 = skinUniformRatio*skinUniformRatio;
-    if (Om*Om*a2*k2 > D2)
+    if (Om*Om*P.a2*k2 > D2)
     {
-        return skinClosedForm(q, m, centroid, n, w, omega, I, Ir);
+        skinClosedForm(P, n, Ux, Uy, Om, I, Ir);
     }
-    skinExpansion(q, m, centroid, n, w, omega, I, Ir);
+    else if (D2 > 0)
+    {
+        skinExpansion(P, n, Ux, Uy, Om, I, Ir);
+    }
     return true;
 }
 
