@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -86,6 +87,19 @@ MassModel massModelFromName(const std::string& name)
 }
 
 
+namespace
+{
+
+//- The next shape's serial (DilatedShape::serial), from 1
+std::uint64_t nextSerial()
+{
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
+
+} // anonymous namespace
+
+
 DilatedShape::DilatedShape
 (
     const ConvexPolyhedron& coreInput,
@@ -94,7 +108,8 @@ DilatedShape::DilatedShape
 )
 :
     radius_(radius),
-    massModel_(massModel)
+    massModel_(massModel),
+    serial_(nextSerial())
 {
     const double width = coreInput.minWidth();
     if (!(radius > 0) || !(radius <= 0.5*width))

@@ -35,16 +35,18 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
     const int* faceVertices = P.faceVertices().data();
     // Face f's wet (dry) polygon, written at the end of the frame's list,
     // joins the list
-    const auto addWet = [&](int f, int m)
+    const auto addWet = [&](int f, int m, bool whole)
     {
         end += m;
         frame.wetFace[frame.nWet] = f;
+        frame.wetWhole[frame.nWet] = whole;
         frame.wetBegin[++frame.nWet] = end;
     };
-    const auto addDry = [&](int f, int md)
+    const auto addDry = [&](int f, int md, bool whole)
     {
         endDry += md;
         frame.dryFace[frame.nDry] = f;
+        frame.dryWhole[frame.nDry] = whole;
         frame.dryBegin[++frame.nDry] = endDry;
     };
     for (int f = 0; f < nf; ++f)
@@ -94,7 +96,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 );
                 if (m == 0) continue;
             }
-            addWet(f, m);
+            addWet(f, m, nBelow == n);
             continue;
         }
         // Both sides: the heights first, as on the wet side alone, so that
@@ -128,8 +130,8 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 double* hq = frame.wetHeight + end;
                 int m;
                 splitPolygonAt(frame.r, frame.h, at, n, q, hq, m, qd, md);
-                if (md > 0) addDry(f, md);
-                if (m > 0) addWet(f, m);
+                if (md > 0) addDry(f, md, false);
+                if (m > 0) addWet(f, m, false);
                 continue;
             }
             else
@@ -144,7 +146,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
                 }
                 md = clipNegative(p, sNeg, n, qd, sOut);
             }
-            if (md > 0) addDry(f, md);
+            if (md > 0) addDry(f, md, nAbove == n);
         }
         if (nBelow == 0)
         {
@@ -167,7 +169,7 @@ void frameFaces(const PolyhedronView& P, WaterFrame& frame)
             m = clipNegativeAt(frame.r, frame.h, at, n, q, hq);
             if (m == 0) continue;
         }
-        addWet(f, m);
+        addWet(f, m, nBelow == n);
     }
 }
 
@@ -407,6 +409,7 @@ bool frameDry
         }
         end += m;
         frame.dryFace[frame.nDry] = f;
+        frame.dryWhole[frame.nDry] = nAbove == n;
         frame.dryBegin[++frame.nDry] = end;
     }
     frame.dryValid = true;

@@ -149,6 +149,13 @@ Wind::Wind
 }
 
 
+void Wind::prepare(const World& world)
+{
+    // Bodies moved or replaced keep their slots' shapes apart by serial
+    skinPlanes_.resize(world.bodies().size());
+}
+
+
 const char* Wind::name() const
 {
     return "wind";
@@ -196,7 +203,14 @@ void Wind::bodyWind
         const WaterFrame& frame = waterFrame(world, i, level_);
         if (frameDry(P, frame))
         {
-            frameWind(P, frame, b, omega, Ua, F, M);
+            // The body's slot (prepare), or one for this call alone
+            SkinFacePlane single;
+            SkinFacePlane& slot =
+                i < int(skinPlanes_.size()) ? skinPlanes_[i] : single;
+            frameWind
+            (
+                P, frame, b, omega, Ua, world.shapeOf(i).serial(), slot, F, M
+            );
             return;
         }
     }
@@ -270,6 +284,8 @@ void Wind::frameWind
     const Body& b,
     const Vec3& omega,
     const Vec3& Ua,
+    std::uint64_t shape,
+    SkinFacePlane& slot,
     Vec3& F,
     Vec3& M
 ) const
@@ -288,12 +304,12 @@ void Wind::frameWind
     addPolygonsDrag
     (
         P, frame.R, frame.nDry, frame.dryFace, frame.dryBegin,
-        frame.dryVertex, w, omega,
+        frame.dryWhole, frame.dryVertex, w, omega,
         [this](const Vec3& n, bool& skin)
         {
             return facetCoefficient(n, skin);
         },
-        F, M
+        shape, slot, F, M
     );
 }
 
