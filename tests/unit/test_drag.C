@@ -721,7 +721,7 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
     // the centre of rotation from a fifth of a radius to 1000 radii away
     // (both sides of the switch); and a slot's history changes nothing:
     // the drag through one slot that held other faces and shapes equals
-    // the drag through a fresh slot, bit for bit
+    // the drag through a fresh slot and through none, bit for bit
     std::mt19937 gen(4141);
     std::uniform_real_distribution<double> U(-1, 1);
     // Worst relative difference: the closed form's side, measured against
@@ -789,16 +789,20 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
                     worstExpansion = std::max(worstExpansion, diff);
                 }
 
-                // Through the reused slot and through a fresh one
+                // Through the reused slot, a fresh one and none
                 Vec3 F1 = Vec3::Zero(), M1 = Vec3::Zero();
                 Vec3 F2 = Vec3::Zero(), M2 = Vec3::Zero();
+                Vec3 F3 = Vec3::Zero(), M3 = Vec3::Zero();
                 SkinFacePlane fresh;
-                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, reused, F1, M1));
-                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, fresh, F2, M2));
+                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, &reused, F1, M1));
+                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, &fresh, F2, M2));
+                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, nullptr, F3, M3));
                 for (int d = 0; d < 3; ++d)
                 {
                     ASSERT_EQ(F1[d], F2[d]);
                     ASSERT_EQ(M1[d], M2[d]);
+                    ASSERT_EQ(F1[d], F3[d]);
+                    ASSERT_EQ(M1[d], M3[d]);
                 }
             }
             ++faces;

@@ -108,17 +108,19 @@ bool addWholeFaceSkinDrag
     double coeff,
     const Vec3& w,
     const Vec3& omega,
-    SkinFacePlane& slot,
+    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 )
 {
-    if (shape == 0 || slot.shape != shape || slot.face != face)
+    SkinFacePlane single;
+    SkinFacePlane& plane = slot ? *slot : single;
+    if (shape == 0 || plane.shape != shape || plane.face != face)
     {
-        if (!makeSkinFacePlane(P, face, shape, slot)) return false;
+        if (!makeSkinFacePlane(P, face, shape, plane)) return false;
     }
     Vec3 I, Ir;
-    skinIntegralOfFace(slot, R, n, w, omega, I, Ir);
+    skinIntegralOfFace(plane, R, n, w, omega, I, Ir);
     F -= coeff*I;
     M -= coeff*Ir;
     return true;
@@ -249,11 +251,10 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         if (frame.valid())
         {
             if (!frame.wet()) return;
-            // The body's slot (prepare), or one for this call alone where
-            // bodyDrag is called without it
-            SkinFacePlane single;
-            SkinFacePlane& slot =
-                i < int(skinPlanes_.size()) ? skinPlanes_[i] : single;
+            // The body's slot (prepare), or none where bodyDrag is called
+            // without it
+            SkinFacePlane* slot =
+                i < int(skinPlanes_.size()) ? &skinPlanes_[i] : nullptr;
             frameDrag
             (
                 P, frame, b, b.omega(frame.R), current,
@@ -384,7 +385,7 @@ void Drag::frameDrag
     const Vec3& omega,
     const Vec3& current,
     std::uint64_t shape,
-    SkinFacePlane& slot,
+    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 ) const

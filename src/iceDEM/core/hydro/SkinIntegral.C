@@ -460,6 +460,33 @@ void switchedSkin
 } // anonymous namespace
 
 
+namespace
+{
+
+//- The preamble of the skin integrals of the polygon q[0..m): I and Ir
+//  zeroed, the polygon's plane found (false for none), then onPlane(P)
+template<class OnPlane>
+bool skinOnPolygon
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    Vec3& I,
+    Vec3& Ir,
+    const OnPlane& onPlane
+)
+{
+    I.setZero();
+    Ir.setZero();
+    double x[planeCapacity], y[planeCapacity];
+    PlaneView P;
+    if (!skinPlane(q, m, n, x, y, P)) return false;
+    return onPlane(P);
+}
+
+} // anonymous namespace
+
+
 bool skinIntegralExpansion
 (
     const Vec3* q,
@@ -471,19 +498,16 @@ bool skinIntegralExpansion
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    double x[planeCapacity], y[planeCapacity];
-    PlaneView P;
-    if (!skinPlane(q, m, n, x, y, P)) return false;
-    double Ux, Uy, Om;
-    centroidVelocity(P, n, w, omega, Ux, Uy, Om);
-    // No tangential velocity at the centroid: the expansion has no axis
-    // (skinIntegral takes it only where the spin about n vanishes too, and
-    // then u_t vanishes on the polygon)
-    if (!(Ux*Ux + Uy*Uy > 0)) return true;
-    skinExpansion(P, n, Ux, Uy, Om, I, Ir);
-    return true;
+    return skinOnPolygon(q, m, n, I, Ir, [&](const PlaneView& P)
+    {
+        double Ux, Uy, Om;
+        centroidVelocity(P, n, w, omega, Ux, Uy, Om);
+        // No tangential velocity at the centroid: the expansion has no
+        // axis (skinIntegral takes it only where the spin about n vanishes
+        // too, and then u_t vanishes on the polygon)
+        if (Ux*Ux + Uy*Uy > 0) skinExpansion(P, n, Ux, Uy, Om, I, Ir);
+        return true;
+    });
 }
 
 
@@ -498,16 +522,14 @@ bool skinIntegralClosedForm
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    double x[planeCapacity], y[planeCapacity];
-    PlaneView P;
-    if (!skinPlane(q, m, n, x, y, P)) return false;
-    double Ux, Uy, Om;
-    centroidVelocity(P, n, w, omega, Ux, Uy, Om);
-    if (Om == 0) return false;
-    skinClosedForm(P, n, Ux, Uy, Om, I, Ir);
-    return true;
+    return skinOnPolygon(q, m, n, I, Ir, [&](const PlaneView& P)
+    {
+        double Ux, Uy, Om;
+        centroidVelocity(P, n, w, omega, Ux, Uy, Om);
+        if (Om == 0) return false;
+        skinClosedForm(P, n, Ux, Uy, Om, I, Ir);
+        return true;
+    });
 }
 
 
@@ -522,20 +544,18 @@ bool skinIntegral
     Vec3& Ir
 )
 {
-    I.setZero();
-    Ir.setZero();
-    double x[planeCapacity], y[planeCapacity];
-    PlaneView P;
-    if (!skinPlane(q, m, n, x, y, P)) return false;
-    switchedSkin
-    (
-        P, n, w, omega, I, Ir,
-        [&](double Ux, double Uy, double Om)
-        {
-            skinExpansion(P, n, Ux, Uy, Om, I, Ir);
-        }
-    );
-    return true;
+    return skinOnPolygon(q, m, n, I, Ir, [&](const PlaneView& P)
+    {
+        switchedSkin
+        (
+            P, n, w, omega, I, Ir,
+            [&](double Ux, double Uy, double Om)
+            {
+                skinExpansion(P, n, Ux, Uy, Om, I, Ir);
+            }
+        );
+        return true;
+    });
 }
 
 

@@ -203,10 +203,9 @@ void Wind::bodyWind
         const WaterFrame& frame = waterFrame(world, i, level_);
         if (frameDry(P, frame))
         {
-            // The body's slot (prepare), or one for this call alone
-            SkinFacePlane single;
-            SkinFacePlane& slot =
-                i < int(skinPlanes_.size()) ? skinPlanes_[i] : single;
+            // The body's slot (prepare), or none
+            SkinFacePlane* slot =
+                i < int(skinPlanes_.size()) ? &skinPlanes_[i] : nullptr;
             frameWind
             (
                 P, frame, b, omega, Ua, world.shapeOf(i).serial(), slot, F, M
@@ -285,7 +284,7 @@ void Wind::frameWind
     const Vec3& omega,
     const Vec3& Ua,
     std::uint64_t shape,
-    SkinFacePlane& slot,
+    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 ) const
