@@ -204,7 +204,6 @@ Drag::Drag
 void Drag::prepare(const World& world)
 {
     flow_->prepare(world, *this);
-    // Bodies moved or replaced keep their slots' shapes apart by serial
     skinPlanes_.resize(world.bodies().size());
 }
 
@@ -251,14 +250,10 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         if (frame.valid())
         {
             if (!frame.wet()) return;
-            // The body's slot (prepare), or none where bodyDrag is called
-            // without it
-            SkinFacePlane* slot =
-                i < int(skinPlanes_.size()) ? &skinPlanes_[i] : nullptr;
             frameDrag
             (
                 P, frame, b, b.omega(frame.R), current,
-                world.shapeOf(i).serial(), slot, F, M
+                world.shapeOf(i).serial(), skinPlanes_.slot(i), F, M
             );
             return;
         }

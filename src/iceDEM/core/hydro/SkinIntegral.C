@@ -29,125 +29,11 @@ constexpr double coneS[3] =
 constexpr double coneWS[3] =
     {0.27777777777777778, 0.44444444444444444, 0.27777777777777778};
 
-} // anonymous namespace
-
-
-namespace
-{
-
-//- Area and centroid of the planar polygon q[0..m) (normal n); false for
-//  no positive area
-bool polygonCentroid
-(
-    const Vec3* q,
-    int m,
-    const Vec3& n,
-    double& area,
-    Vec3& centroid
-)
-{
-    centroid.setZero();
-    area = 0;
-    for (int k = 1; k + 1 < m; ++k)
-    {
-        const double a = 0.5*((q[k] - q[0]).cross(q[k + 1] - q[0])).dot(n);
-        area += a;
-        centroid += (a/3.0)*(q[0] + q[k] + q[k + 1]);
-    }
-    if (!(area > 0)) return false;
-    centroid /= area;
-    return true;
-}
-
 //- The tangential part of u on a plane of unit normal n
 inline Vec3 tangential(const Vec3& u, const Vec3& n)
 {
     return u - u.dot(n)*n;
 }
-
-//- The preamble of the skin integrals: zeroes I and Ir and finds the
-//  centroid of the polygon q[0..m) (normal n); false for a polygon of fewer
-//  than 3 or more than SubmergedFace::maxVertices + 1 vertices or of no
-//  positive area
-bool skinPolygon
-(
-    const Vec3* q,
-    int m,
-    const Vec3& n,
-    Vec3& I,
-    Vec3& Ir,
-    Vec3& centroid
-)
-{
-    I.setZero();
-    Ir.setZero();
-    double area;
-    return
-        m >= 3 && m <= SubmergedFace::maxVertices + 1
-     && polygonCentroid(q, m, n, area, centroid);
-}
-
-} // anonymous namespace
-
-
-bool skinIntegralConical
-(
-    const Vec3* q,
-    int m,
-    const Vec3& n,
-    const Vec3& w,
-    const Vec3& omega,
-    Vec3& I,
-    Vec3& Ir
-)
-{
-    Vec3 centroid;
-    if (!skinPolygon(q, m, n, I, Ir, centroid)) return false;
-
-    // u_t is linear: its value at the centroid and its change towards each
-    // vertex (e_k = q_k - centroid)
-    Vec3 e[SubmergedFace::maxVertices + 1];
-    Vec3 du[SubmergedFace::maxVertices + 1];
-    const Vec3 utc = tangential(w + omega.cross(centroid), n);
-    for (int k = 0; k < m; ++k)
-    {
-        e[k] = q[k] - centroid;
-        du[k] = tangential(omega.cross(e[k]), n);
-    }
-    Vec3 M = Vec3::Zero();
-    for (int k = 0; k < m; ++k)
-    {
-        const int k1 = k + 1 == m ? 0 : k + 1;
-        const Vec3& eb = e[k];
-        const Vec3& ec = e[k1];
-        const double A2 = (eb.cross(ec)).dot(n);
-        // Sum of the integrand and of its moments about the centroid, as
-        // eb x Gb + ec x Gc
-        Vec3 It = Vec3::Zero(), Gb = Vec3::Zero(), Gc = Vec3::Zero();
-        for (int i = 0; i < 2; ++i)
-        {
-            for (int j = 0; j < 3; ++j)
-            {
-                const double tb = coneT[i]*(1 - coneS[j]);
-                const double tc = coneT[i]*coneS[j];
-                const Vec3 ut = utc + tb*du[k] + tc*du[k1];
-                const double wgt = A2*coneWT[i]*coneWS[j];
-                const Vec3 dI = (wgt*ut.norm())*ut;
-                It += dI;
-                Gb += tb*dI;
-                Gc += tc*dI;
-            }
-        }
-        I += It;
-        M += eb.cross(Gb) + ec.cross(Gc);
-    }
-    Ir = M + centroid.cross(I);
-    return true;
-}
-
-
-namespace
-{
 
 //- A polygon in its plane's axes, for the skin integrals: ex (any unit
 //  vector across n) and ey = n x ex, the vertices' coordinates (x, y)
@@ -485,6 +371,63 @@ bool skinOnPolygon
 }
 
 } // anonymous namespace
+
+
+bool skinIntegralConical
+(
+    const Vec3* q,
+    int m,
+    const Vec3& n,
+    const Vec3& w,
+    const Vec3& omega,
+    Vec3& I,
+    Vec3& Ir
+)
+{
+    return skinOnPolygon(q, m, n, I, Ir, [&](const PlaneView& P)
+    {
+        const Vec3& centroid = P.centroid;
+        // u_t is linear: its value at the centroid and its change towards
+        // each vertex (e_k = q_k - centroid)
+        Vec3 e[SubmergedFace::maxVertices + 1];
+        Vec3 du[SubmergedFace::maxVertices + 1];
+        const Vec3 utc = tangential(w + omega.cross(centroid), n);
+        for (int k = 0; k < m; ++k)
+        {
+            e[k] = q[k] - centroid;
+            du[k] = tangential(omega.cross(e[k]), n);
+        }
+        Vec3 M = Vec3::Zero();
+        for (int k = 0; k < m; ++k)
+        {
+            const int k1 = k + 1 == m ? 0 : k + 1;
+            const Vec3& eb = e[k];
+            const Vec3& ec = e[k1];
+            const double A2 = (eb.cross(ec)).dot(n);
+            // Sum of the integrand and of its moments about the centroid,
+            // as eb x Gb + ec x Gc
+            Vec3 It = Vec3::Zero(), Gb = Vec3::Zero(), Gc = Vec3::Zero();
+            for (int i = 0; i < 2; ++i)
+            {
+                for (int j = 0; j < 3; ++j)
+                {
+                    const double tb = coneT[i]*(1 - coneS[j]);
+                    const double tc = coneT[i]*coneS[j];
+                    const Vec3 ut = utc + tb*du[k] + tc*du[k1];
+                    const double wgt = A2*coneWT[i]*coneWS[j];
+                    const Vec3 dI = (wgt*ut.norm())*ut;
+                    It += dI;
+                    Gb += tb*dI;
+                    Gc += tc*dI;
+                }
+            }
+            I += It;
+            M += eb.cross(Gb) + ec.cross(Gc);
+        }
+        Ir = M + centroid.cross(I);
+        return true;
+    });
+}
 
 
 bool skinIntegralExpansion

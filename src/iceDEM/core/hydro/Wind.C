@@ -151,7 +151,6 @@ Wind::Wind
 
 void Wind::prepare(const World& world)
 {
-    // Bodies moved or replaced keep their slots' shapes apart by serial
     skinPlanes_.resize(world.bodies().size());
 }
 
@@ -203,12 +202,10 @@ void Wind::bodyWind
         const WaterFrame& frame = waterFrame(world, i, level_);
         if (frameDry(P, frame))
         {
-            // The body's slot (prepare), or none
-            SkinFacePlane* slot =
-                i < int(skinPlanes_.size()) ? &skinPlanes_[i] : nullptr;
             frameWind
             (
-                P, frame, b, omega, Ua, world.shapeOf(i).serial(), slot, F, M
+                P, frame, b, omega, Ua, world.shapeOf(i).serial(),
+                skinPlanes_.slot(i), F, M
             );
             return;
         }
