@@ -715,13 +715,11 @@ TEST(Drag, skinClosedFormAboutAVertex)
 TEST(Drag, skinOfAWholeFaceFromItsPlane)
 {
     // Random prisms (3 to 12 sides) at random rotations: every face's skin
-    // integrals from its plane kept in the body frame (SkinFacePlane: the
+    // integrals from its plane kept in the body frame (FacePlane: the
     // expansion from the plane's moments, the closed form from its
-    // coordinates) against skinIntegral of the face's world polygon, with
-    // the centre of rotation from a fifth of a radius to 1000 radii away
-    // (both sides of the switch); and a slot's history changes nothing:
-    // the drag through one slot that held other faces and shapes equals
-    // the drag through a fresh slot and through none, bit for bit
+    // coordinates and edge tangents) against skinIntegral of the face's
+    // world polygon, with the centre of rotation from a fifth of a radius
+    // to 1000 radii away (both sides of the switch)
     std::mt19937 gen(4141);
     std::uniform_real_distribution<double> U(-1, 1);
     // Worst relative difference: the closed form's side, measured against
@@ -732,7 +730,6 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
     // polynomial (the moments summed over the edges or kept)
     double worstClosed = 0, worstExpansion = 0;
     int faces = 0;
-    SkinFacePlane reused;
     for (int trial = 0; trial < 40; ++trial)
     {
         const int sides = 3 + trial % 10;
@@ -749,7 +746,6 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
         const Mat3 R =
             Quat(Eigen::AngleAxisd(M_PI*U(gen), Vec3(U(gen), U(gen), U(gen)).normalized()))
            .toRotationMatrix();
-        const std::uint64_t shape = 1000 + trial;
         for (int f = 0; f < int(P.faces().size()); ++f)
         {
             const int m = P.faces()[f].count;
@@ -759,8 +755,8 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
                 q.push_back(R*P.vertices()[P.faceVertex(f, k)]);
             }
             const Vec3 n = R*P.faces()[f].normal;
-            SkinFacePlane plane;
-            ASSERT_TRUE(makeSkinFacePlane(P, f, shape, plane));
+            FacePlane plane;
+            ASSERT_TRUE(makeFacePlane(P, f, plane));
             const double size = std::sqrt(plane.a2);
             for (double D : {0.2, 3.0, 50.0, 99.0, 101.0, 1000.0})
             {
@@ -788,22 +784,6 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
                 {
                     worstExpansion = std::max(worstExpansion, diff);
                 }
-
-                // Through the reused slot, a fresh one and none
-                Vec3 F1 = Vec3::Zero(), M1 = Vec3::Zero();
-                Vec3 F2 = Vec3::Zero(), M2 = Vec3::Zero();
-                Vec3 F3 = Vec3::Zero(), M3 = Vec3::Zero();
-                SkinFacePlane fresh;
-                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, &reused, F1, M1));
-                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, &fresh, F2, M2));
-                ASSERT_TRUE(addWholeFaceSkinDrag(P, f, shape, R, n, 2.0, w, omega, nullptr, F3, M3));
-                for (int d = 0; d < 3; ++d)
-                {
-                    ASSERT_EQ(F1[d], F2[d]);
-                    ASSERT_EQ(M1[d], M2[d]);
-                    ASSERT_EQ(F1[d], F3[d]);
-                    ASSERT_EQ(M1[d], M3[d]);
-                }
             }
             ++faces;
         }
@@ -818,7 +798,7 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
     // A face beyond the plane's room is refused (the caller's general path)
     {
         std::vector<Vec2> polygon;
-        const int sides = SkinFacePlane::maxVertices + 1;
+        const int sides = FacePlane::maxVertices + 1;
         for (int k = 0; k < sides; ++k)
         {
             const double th = 2*M_PI*k/sides;
@@ -832,9 +812,9 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
             if (P.faces()[f].count == sides) big = f;
         }
         ASSERT_GE(big, 0);
-        SkinFacePlane plane;
-        EXPECT_FALSE(makeSkinFacePlane(P, big, 7, plane));
-        EXPECT_EQ(plane.shape, 0u);
+        FacePlane plane;
+        EXPECT_FALSE(makeFacePlane(P, big, plane));
+        EXPECT_EQ(plane.face, -1);
     }
 }
 

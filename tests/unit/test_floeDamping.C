@@ -175,7 +175,10 @@ TEST(FloeDamping, waterlinePolygonAgreesWithTheWetFaces)
     // (waterplane(frame)) on random poses of an irregular hexagonal prism:
     // level to heeled by 0.3 rad, at any height (cut across the sides, or
     // across a cap: there both take the wet polygons). Equal to round-off;
-    // the heeled box's closed form is checked above.
+    // the heeled box's closed form is checked above. With the floe's caps
+    // (findPrismCaps, kept by a world with water: DilatedShape::prismCaps)
+    // the waterline polygon comes from the lower cap's moments, equal to
+    // round-off to the one from the cap's vertices
     std::mt19937 gen(23);
     std::uniform_real_distribution<double> U(-1, 1);
     DampWorld dw(1e-3);
@@ -196,7 +199,10 @@ TEST(FloeDamping, waterlinePolygonAgreesWithTheWetFaces)
     Body& b = dw.world->bodies()[0];
     PolyhedronBuffer buf;
     int lid = 0;
-    double worst = 0;
+    double worst = 0, capWorst = 0;
+    PrismCaps caps;
+    ASSERT_TRUE(findPrismCaps(dw.world->shapeOf(0).outer(buf), caps));
+    const auto withCaps = std::make_unique<WaterFrame>();
     for (int trial = 0; trial < 400; ++trial)
     {
         b.q = Quat(Eigen::AngleAxisd
@@ -210,6 +216,27 @@ TEST(FloeDamping, waterlinePolygonAgreesWithTheWetFaces)
         const Waterplane wl = waterplane(P, frame);
         const Waterplane wf = waterplane(frame);
         lid += frame.prismBottom >= 0;
+        computeWaterFrame(P, frame.R, b.x, 0.1, *withCaps, false, &caps);
+        const Waterplane wc = waterplane(P, *withCaps);
+        EXPECT_EQ(withCaps->prismBottom, frame.prismBottom);
+        EXPECT_EQ(withCaps->prismBottomPlane != nullptr, frame.prismBottom >= 0);
+        const double a2 = std::max(wl.area*wl.area, 1.0);
+        capWorst = std::max
+        (
+            capWorst,
+            std::max
+            (
+                std::abs(wc.area - wl.area)/std::max(wl.area, 1.0),
+                std::abs(wc.Ixx - wl.Ixx)/a2
+            )
+        );
+        EXPECT_NEAR(wc.area, wl.area, 1e-14*std::max(wl.area, 1.0));
+        if (wl.area > 1e-6)
+        {
+            EXPECT_NEAR((wc.centroid - wl.centroid).norm(), 0, 1e-13*3);
+        }
+        EXPECT_NEAR(wc.Ixx, wl.Ixx, 1e-13*a2);
+        EXPECT_NEAR(wc.Iyy, wl.Iyy, 1e-13*a2);
         const double A = std::max(wf.area, 1.0);
         worst = std::max
         (
@@ -227,7 +254,8 @@ TEST(FloeDamping, waterlinePolygonAgreesWithTheWetFaces)
     }
     std::cout << "waterline polygon against the wet faces' lid: " << lid
               << " of 400 poses by the polygon, largest relative difference "
-              << worst << std::endl;
+              << worst << "; from the kept cap against its vertices "
+              << capWorst << std::endl;
     // Most poses are cut across the sides only (the waterline polygon)
     EXPECT_GT(lid, 150);
     EXPECT_LT(lid, 400);

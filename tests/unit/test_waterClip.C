@@ -341,6 +341,125 @@ TEST(WaterClip, divergenceEqualsTetrahedraOnRandomPoses)
 }
 
 
+TEST(WaterClip, truncatedPrismFromItsKeptCap)
+{
+    // A floe's kept caps (findPrismCaps, DilatedShape::prismCaps): random
+    // prisms of 3 to 12 sides are found with their two caps (a box with
+    // its largest pair, a pyramid not at all); on nearly level and heeled
+    // poses at any height lowerCapBelow takes the cap truncatedPrismBottom
+    // finds, and the truncated prism's volume and centre from the cap's
+    // area and second moments equal those from its vertices and from the
+    // tetrahedra (the same integrals, other round-off)
+    std::mt19937 gen(4242);
+    std::uniform_real_distribution<double> U(-1, 1);
+    int cut = 0;
+    double worstVolume = 0, worstCentre = 0;
+    for (int trial = 0; trial < 40; ++trial)
+    {
+        const int sides = 3 + trial % 10;
+        std::vector<Vec2> polygon;
+        const double a = 2 + 6*std::abs(U(gen)), b = 2 + 6*std::abs(U(gen));
+        for (int k = 0; k < sides; ++k)
+        {
+            const double th = 2*M_PI*(k + 0.4*std::abs(U(gen)))/sides;
+            polygon.push_back(Vec2(a*std::cos(th), b*std::sin(th)));
+        }
+        const double z0 = -0.2 - std::abs(U(gen)), z1 = 0.3 + std::abs(U(gen));
+        const ConvexPolyhedron prism = ConvexPolyhedron::prism(polygon, z0, z1);
+        const PolyhedronView P = prism.view();
+        PrismCaps caps;
+        ASSERT_TRUE(findPrismCaps(P, caps)) << "trial " << trial;
+        for (const FacePlane& cap : caps.cap)
+        {
+            ASSERT_GE(cap.face, 0);
+            EXPECT_EQ(std::abs(P.faces()[cap.face].normal.z()), 1);
+            EXPECT_EQ(caps.of(cap.face), &cap);
+        }
+        const double size = std::max(a, b) + z1 - z0;
+        for (int pose = 0; pose < 50; ++pose)
+        {
+            const Mat3 R = Eigen::AngleAxisd
+            (
+                (pose % 2 ? 0.05 : 0.4)*U(gen),
+                Vec3(U(gen), U(gen), U(gen)).normalized()
+            ).toRotationMatrix();
+            const double far = pose % 3 == 0 ? 1e3 : 1;
+            const Vec3 x(far*U(gen), far*U(gen), 0.5*U(gen));
+            const double level = 0.3*U(gen);
+            std::vector<Vec3> r;
+            std::vector<double> h;
+            for (const Vec3& v : P.vertices())
+            {
+                r.push_back(R*v);
+                h.push_back(r.back().z() + x.z() - level);
+            }
+            const int k = lowerCapBelow(caps, P, R, h.data());
+            const int bottom = truncatedPrismBottom(P, R, h.data());
+            ASSERT_EQ(k >= 0 ? caps.cap[k].face : -1, bottom)
+                << "trial " << trial << " pose " << pose;
+            if (k < 0) continue;
+            ++cut;
+            const SubmergedVolume fromCap =
+                truncatedPrismVolume(caps.cap[k], R, x, level);
+            const SubmergedVolume fromVertices = truncatedPrismVolume
+            (
+                P, R, r.data(), h.data(), bottom, x
+            );
+            const SubmergedVolume byTetrahedra =
+                submergedVolumeByTetrahedra(P, R, x, level);
+            const double V = byTetrahedra.volume;
+            worstVolume = std::max
+            (
+                worstVolume, std::abs(fromCap.volume - fromVertices.volume)/V
+            );
+            worstCentre = std::max
+            (
+                worstCentre,
+                (fromCap.centroid - fromVertices.centroid).norm()/size
+            );
+            EXPECT_NEAR(fromCap.volume, fromVertices.volume, tol*V);
+            EXPECT_NEAR(fromCap.volume, V, tol*V);
+            EXPECT_NEAR
+            (
+                (fromCap.centroid - fromVertices.centroid).norm(), 0,
+                tol*size + 1e-14*far
+            );
+            EXPECT_NEAR
+            (
+                (fromCap.centroid - byTetrahedra.centroid).norm(), 0,
+                tol*size + 1e-14*far
+            );
+        }
+    }
+    std::cout << cut << " of 2000 poses cut across the sides only; from the"
+              << " kept cap against its vertices: volume " << worstVolume
+              << ", centre " << worstCentre << " of the size" << std::endl;
+    EXPECT_GT(cut, 400);
+
+    // A box: the pair of the largest faces (any pair is a prism's caps)
+    {
+        const ConvexPolyhedron box = ConvexPolyhedron::box(Vec3(3, 2, 1));
+        PrismCaps caps;
+        ASSERT_TRUE(findPrismCaps(box.view(), caps));
+        for (const FacePlane& cap : caps.cap)
+        {
+            EXPECT_EQ(std::abs(box.faces()[cap.face].normal.z()), 1);
+            EXPECT_NEAR(cap.area, 6*4, 1e-12);
+        }
+    }
+    // A pyramid is no prism
+    {
+        const ConvexPolyhedron pyramid = ConvexPolyhedron::hull
+        (
+            {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0),
+             Vec3(0, 0, 1)}
+        );
+        PrismCaps caps;
+        EXPECT_FALSE(findPrismCaps(pyramid.view(), caps));
+    }
+}
+
+
 // clipNegative: the part of a polygon where a linear function is negative
 TEST(WaterClip, clipNegativeOfASquare)
 {

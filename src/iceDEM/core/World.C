@@ -103,6 +103,9 @@ int World::addShape(const DilatedShape& s)
         throw Error(msg.str(), "points");
     }
     shapes_.push_back(s);
+    // A shape added to a running world's hydrodynamics (inflow) keeps what
+    // the ones before it keep (prepareModels)
+    if (modelsReadOuter()) shapes_.back().keepOuter();
     return static_cast<int>(shapes_.size()) - 1;
 }
 
@@ -125,6 +128,7 @@ void World::replaceShape(int index, const DilatedShape& s)
         throw Error("a shape has too many core vertices", "points");
     }
     shapes_[index] = s;
+    if (modelsReadOuter()) shapes_[index].keepOuter();
 }
 
 
@@ -210,13 +214,22 @@ void World::prepareModels()
     modelForce_.shrink_to_fit();
     modelTorque_.shrink_to_fit();
     // Buoyancy and drag clip every floe's outer polyhedron at every step:
-    // kept, not derived each time (a quarter of a Kulluk run otherwise)
+    // kept, not derived each time (a quarter of a Kulluk run otherwise),
+    // with a prism's caps
+    if (modelsReadOuter())
+    {
+        for (DilatedShape& s : shapes_) s.keepOuter();
+    }
+}
+
+
+bool World::modelsReadOuter() const
+{
     for (const auto& m : forceModels_)
     {
-        if (!m->readsOuterPolyhedra()) continue;
-        for (DilatedShape& s : shapes_) s.keepOuter();
-        break;
+        if (m->readsOuterPolyhedra()) return true;
     }
+    return false;
 }
 
 

@@ -7,7 +7,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -87,19 +86,6 @@ MassModel massModelFromName(const std::string& name)
 }
 
 
-namespace
-{
-
-//- The next shape's serial (DilatedShape::serial), from 1
-std::uint64_t nextSerial()
-{
-    static std::atomic<std::uint64_t> next{1};
-    return next++;
-}
-
-} // anonymous namespace
-
-
 DilatedShape::DilatedShape
 (
     const ConvexPolyhedron& coreInput,
@@ -108,8 +94,7 @@ DilatedShape::DilatedShape
 )
 :
     radius_(radius),
-    massModel_(massModel),
-    serial_(nextSerial())
+    massModel_(massModel)
 {
     const double width = coreInput.minWidth();
     if (!(radius > 0) || !(radius <= 0.5*width))
@@ -205,17 +190,26 @@ PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
 
 void DilatedShape::keepOuter()
 {
-    if (storedOuter_)
+    if (!storedOuter_)
     {
-        return;
+        PolyhedronBuffer derived;
+        outer(derived);
+        storedOuter_ = std::make_shared<const ConvexPolyhedron>
+        (
+            core_.sharedTopology(), derived.vertices.data(),
+            derived.planes.data()
+        );
+        outerKept_ = true;
     }
-    PolyhedronBuffer derived;
-    outer(derived);
-    storedOuter_ = std::make_shared<const ConvexPolyhedron>
-    (
-        core_.sharedTopology(), derived.vertices.data(), derived.planes.data()
-    );
-    outerKept_ = true;
+    if (!prismCapsSearched_)
+    {
+        prismCapsSearched_ = true;
+        PrismCaps caps;
+        if (findPrismCaps(storedOuter_->view(), caps))
+        {
+            prismCaps_ = std::make_shared<const PrismCaps>(caps);
+        }
+    }
 }
 
 
@@ -223,6 +217,7 @@ std::size_t DilatedShape::heapBytes() const
 {
     return core_.heapBytes()
         + (storedOuter_ ? sizeof(ConvexPolyhedron) + storedOuter_->heapBytes() : 0)
+        + (prismCaps_ ? sizeof(PrismCaps) : 0)
         + edgeLength_.capacity()*sizeof(double);
 }
 

@@ -98,32 +98,22 @@ void addFacetDrag
 }
 
 
-bool addWholeFaceSkinDrag
+void addWholeFaceSkinDrag
 (
-    const PolyhedronView& P,
-    int face,
-    std::uint64_t shape,
+    const FacePlane& plane,
     const Mat3& R,
     const Vec3& n,
     double coeff,
     const Vec3& w,
     const Vec3& omega,
-    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 )
 {
-    SkinFacePlane single;
-    SkinFacePlane& plane = slot ? *slot : single;
-    if (shape == 0 || plane.shape != shape || plane.face != face)
-    {
-        if (!makeSkinFacePlane(P, face, shape, plane)) return false;
-    }
     Vec3 I, Ir;
     skinIntegralOfFace(plane, R, n, w, omega, I, Ir);
     F -= coeff*I;
     M -= coeff*Ir;
-    return true;
 }
 
 
@@ -204,7 +194,6 @@ Drag::Drag
 void Drag::prepare(const World& world)
 {
     flow_->prepare(world, *this);
-    skinPlanes_.resize(world.bodies().size());
 }
 
 
@@ -250,11 +239,7 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
         if (frame.valid())
         {
             if (!frame.wet()) return;
-            frameDrag
-            (
-                P, frame, b, b.omega(frame.R), current,
-                world.shapeOf(i).serial(), skinPlanes_.slot(i), F, M
-            );
+            frameDrag(P, frame, b, b.omega(frame.R), current, F, M);
             return;
         }
     }
@@ -379,8 +364,6 @@ void Drag::frameDrag
     const Body& b,
     const Vec3& omega,
     const Vec3& current,
-    std::uint64_t shape,
-    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 ) const
@@ -404,7 +387,7 @@ void Drag::frameDrag
         {
             return facetCoefficient(n, skin);
         },
-        shape, slot, F, M
+        frame.caps, F, M
     );
 }
 

@@ -77,6 +77,48 @@ struct WaterplaneSums
     }
 };
 
+//- The waterplane of a truncated prism from its lower cap's plane (kept:
+//  PrismCaps), as waterplane(P, frame) makes it from the cap's vertices:
+//  the cap moved along the axis a to the water plane, l = r - h/a_z a, is
+//  an affine image of the cap, l = lc + X u + Y v (X, Y the cap's
+//  coordinates about its centroid, whose first moments vanish), so the
+//  lid's area and its second moments about its centroid lc are the cap's
+//  times minus the map's Jacobian (u x v)_z (negative: the cap runs
+//  clockwise seen from above)
+Waterplane capWaterplane(const FacePlane& bottom, const WaterFrame& frame)
+{
+    const Mat3& R = frame.R;
+    const Vec3 ex = R*bottom.ex;
+    const Vec3 ey = R*bottom.ey;
+    const Vec3 c = R*bottom.centroid;
+    const Vec3 a = -(R*bottom.normal);
+    const double invAz = 1/a.z();
+    const double hc = c.z() + (frame.x.z() - frame.level);
+    const Vec3 lc = c - (hc*invAz)*a;
+    const Vec3 u = ex - (ex.z()*invAz)*a;
+    const Vec3 v = ey - (ey.z()*invAz)*a;
+    const double J = -(u.x()*v.y() - u.y()*v.x());
+    Waterplane w;
+    const double A = J*bottom.area;
+    if (!(A > 0)) return w;
+    const double Mxx = bottom.moment2[0];
+    const double Mxy = bottom.moment2[1];
+    const double Myy = bottom.moment2[2];
+    w.area = A;
+    w.centroid =
+        frame.x + Vec3(lc.x(), lc.y(), frame.level - frame.x.z());
+    // About the lid's centroid lc: the cap's moments about its own
+    w.Ixx = std::max
+    (
+        0.0, J*(u.x()*u.x()*Mxx + 2*u.x()*v.x()*Mxy + v.x()*v.x()*Myy)
+    );
+    w.Iyy = std::max
+    (
+        0.0, J*(u.y()*u.y()*Mxx + 2*u.y()*v.y()*Mxy + v.y()*v.y()*Myy)
+    );
+    return w;
+}
+
 } // anonymous namespace
 
 
@@ -140,6 +182,10 @@ Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
     if (bottom < 0)
     {
         return waterplane(frame);
+    }
+    if (frame.prismBottomPlane)
+    {
+        return capWaterplane(*frame.prismBottomPlane, frame);
     }
 
     // The lower cap's vertices r (heights h < 0) moved along the prism's

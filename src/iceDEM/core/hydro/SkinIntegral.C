@@ -42,11 +42,15 @@ inline Vec3 tangential(const Vec3& u, const Vec3& n)
 //  of the position in the plane, so two coordinates a vertex carry them: an
 //  edge's outward normal is tau x n = (tau_y, -tau_x), no cross product.
 //  The coordinates are a world polygon's (skinPlane) or a whole face's,
-//  kept in the body frame (SkinFacePlane)
+//  kept in the body frame (FacePlane)
 struct PlaneView
 {
     const double* x;
     const double* y;
+    //- The edges' unit tangents (edge k from vertex k to k + 1), kept with
+    //  a whole face's plane (FacePlane); null: the closed form finds them
+    const double* tx = nullptr;
+    const double* ty = nullptr;
     int m;
     Vec3 ex, ey;
     Vec3 centroid;
@@ -72,40 +76,13 @@ bool skinPlane
     PlaneView& P
 )
 {
-    if (m < 3 || m > planeCapacity) return false;
+    if (m > planeCapacity) return false;
     P.x = x;
     P.y = y;
     P.m = m;
-    P.ex = n.unitOrthogonal();
-    P.ey = n.cross(P.ex);
-    // Coordinates from q[0], then the fan's area and centroid from there
-    for (int k = 0; k < m; ++k)
-    {
-        const Vec3 e = q[k] - q[0];
-        x[k] = e.dot(P.ex);
-        y[k] = e.dot(P.ey);
-    }
-    double A2 = 0, cx = 0, cy = 0;
-    for (int k = 1; k + 1 < m; ++k)
-    {
-        const double a = x[k]*y[k + 1] - x[k + 1]*y[k];
-        A2 += a;
-        cx += a*(x[k] + x[k + 1]);
-        cy += a*(y[k] + y[k + 1]);
-    }
-    if (!(A2 > 0)) return false;
-    cx /= 3*A2;
-    cy /= 3*A2;
-    P.centroid = q[0] + P.inPlane(cx, cy);
-    P.a2 = 0;
-    for (int k = 0; k < m; ++k)
-    {
-        x[k] -= cx;
-        y[k] -= cy;
-        P.a2 = std::max(P.a2, x[k]*x[k] + y[k]*y[k]);
-    }
-    return true;
+    return planeCoordinates(q, m, n, x, y, P.ex, P.ey, P.centroid, P.a2);
 }
+
 
 //- The skin integrals in closed form (skinIntegralClosedForm) on the plane
 //  P of normal n; U = (Ux, Uy) the tangential velocity at the centroid,
@@ -136,6 +113,16 @@ void skinClosedForm
     // In the plane's axes n x (a, b) = (-b, a): e0 = (-Uy, Ux)/Omega
     const double e0x = -Uy/Om, e0y = Ux/Om;
     const int m = P.m;
+    // The edges' tangents do not depend on e0: a whole face keeps them
+    double txFound[planeCapacity], tyFound[planeCapacity];
+    const double* tk = P.tx;
+    const double* tl = P.ty;
+    if (!tk)
+    {
+        edgeTangents(P.x, P.y, m, txFound, tyFound);
+        tk = txFound;
+        tl = tyFound;
+    }
     double dx[planeCapacity], dy[planeCapacity], r[planeCapacity];
     for (int k = 0; k < m; ++k)
     {
@@ -147,11 +134,7 @@ void skinClosedForm
     for (int k = 0; k < m; ++k)
     {
         const int k1 = k + 1 == m ? 0 : k + 1;
-        const double Ex = dx[k1] - dx[k], Ey = dy[k1] - dy[k];
-        const double L2 = Ex*Ex + Ey*Ey;
-        if (!(L2 > 0)) continue;
-        const double invL = 1/std::sqrt(L2);
-        const double tx = Ex*invL, ty = Ey*invL;
+        const double tx = tk[k], ty = tl[k];
         const double p = dx[k]*ty - dy[k]*tx;
         const double p2 = p*p;
         const double t1 = dx[k]*tx + dy[k]*ty, t2 = dx[k1]*tx + dy[k1]*ty;
@@ -505,62 +488,12 @@ bool skinIntegral
 namespace
 {
 
-//- n! for the moments' weights (n <= 6: moments up to the fourth)
-constexpr double factorials[7] = {1, 1, 2, 6, 24, 120, 720};
-
-inline double factorial(int n)
-{
-    return factorials[n];
-}
-
-inline double binomial(int n, int k)
-{
-    return factorials[n]/(factorials[k]*factorials[n - k]);
-}
-
-double power(double v, int k)
-{
-    double p = 1;
-    for (int i = 0; i < k; ++i) p *= v;
-    return p;
-}
-
-//- int x^i y^j dA over the triangle (0, a, b), D = a x b its twice signed
-//  area: the points s a + t b (s, t >= 0, s + t <= 1), dA = D ds dt and
-//  int s^k t^l ds dt = k! l!/(k + l + 2)!
-double triangleMoment
-(
-    int i,
-    int j,
-    double ax,
-    double ay,
-    double bx,
-    double by,
-    double D
-)
-{
-    double sum = 0;
-    for (int p = 0; p <= i; ++p)
-    {
-        for (int q = 0; q <= j; ++q)
-        {
-            // (s ax + t bx)^i (s ay + t by)^j: the term s^(p + q) t^(...)
-            const int k = p + q, l = i + j - p - q;
-            sum +=
-                binomial(i, p)*binomial(j, q)
-               *power(ax, p)*power(bx, i - p)*power(ay, q)*power(by, j - q)
-               *factorial(k)*factorial(l)/factorial(i + j + 2);
-        }
-    }
-    return D*sum;
-}
-
 //- The expansion (expansionIntegrals) with the moments of a whole face's
 //  plane turned into the axes eu, ev: with x = cu X + su Y and
 //  y = -su X + cu Y (X, Y the plane's axes, (cu, su) = eu)
 void skinExpansionOfFace
 (
-    const SkinFacePlane& face,
+    const FacePlane& face,
     const PlaneView& P,
     const Vec3& n,
     double Ux,
@@ -598,67 +531,9 @@ void skinExpansionOfFace
 } // anonymous namespace
 
 
-bool makeSkinFacePlane
-(
-    const PolyhedronView& P,
-    int f,
-    std::uint64_t shape,
-    SkinFacePlane& plane
-)
-{
-    plane.shape = 0;
-    const auto face = P.faces()[f];
-    const int m = face.count;
-    if (m > SkinFacePlane::maxVertices) return false;
-    Vec3 q[SkinFacePlane::maxVertices];
-    for (int k = 0; k < m; ++k)
-    {
-        q[k] = P.vertices()[P.faceVertex(f, k)];
-    }
-    PlaneView V;
-    if (!skinPlane(q, m, face.normal, plane.x, plane.y, V)) return false;
-    plane.m = m;
-    plane.ex = V.ex;
-    plane.ey = V.ey;
-    plane.centroid = V.centroid;
-    plane.a2 = V.a2;
-
-    // Area and moments about the centroid over the fan of triangles
-    // (centroid, vertex k, vertex k + 1)
-    double A2 = 0;
-    for (double& v : plane.moment2) v = 0;
-    for (double& v : plane.moment3) v = 0;
-    for (double& v : plane.moment4) v = 0;
-    for (int k = 0; k < m; ++k)
-    {
-        const int k1 = k + 1 == m ? 0 : k + 1;
-        const double ax = plane.x[k], ay = plane.y[k];
-        const double bx = plane.x[k1], by = plane.y[k1];
-        const double D = ax*by - bx*ay;
-        A2 += D;
-        for (int j = 0; j <= 2; ++j)
-        {
-            plane.moment2[j] += triangleMoment(2 - j, j, ax, ay, bx, by, D);
-        }
-        for (int j = 0; j <= 3; ++j)
-        {
-            plane.moment3[j] += triangleMoment(3 - j, j, ax, ay, bx, by, D);
-        }
-        for (int j = 0; j <= 4; ++j)
-        {
-            plane.moment4[j] += triangleMoment(4 - j, j, ax, ay, bx, by, D);
-        }
-    }
-    plane.area = 0.5*A2;
-    plane.face = f;
-    plane.shape = shape;
-    return true;
-}
-
-
 void skinIntegralOfFace
 (
-    const SkinFacePlane& plane,
+    const FacePlane& plane,
     const Mat3& R,
     const Vec3& n,
     const Vec3& w,
@@ -674,6 +549,8 @@ void skinIntegralOfFace
     PlaneView P;
     P.x = plane.x;
     P.y = plane.y;
+    P.tx = plane.tx;
+    P.ty = plane.ty;
     P.m = plane.m;
     P.ex = R*plane.ex;
     P.ey = R*plane.ey;

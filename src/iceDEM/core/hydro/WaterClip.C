@@ -382,6 +382,79 @@ SubmergedVolume submergedVolume
 }
 
 
+int lowerCapBelow
+(
+    const PrismCaps& caps,
+    const PolyhedronView& P,
+    const Mat3& R,
+    const double* h
+)
+{
+    // As truncatedPrismBottom with cap0 the kept cap[0]
+    const Vec3 up = R.row(2).transpose();
+    const double nz = up.dot(caps.cap[0].normal);
+    const int k = nz < 0 ? 0 : 1;
+    const auto faces = P.faces();
+    const int* faceVertices = P.faceVertices().data();
+    const int bottom = caps.cap[k].face;
+    const int top = caps.cap[1 - k].face;
+    const int* fb = faceVertices + faces[bottom].begin;
+    for (int j = 0; j < faces[bottom].count; ++j)
+    {
+        if (!(h[fb[j]] < 0)) return -1;
+    }
+    const int* ft = faceVertices + faces[top].begin;
+    for (int j = 0; j < faces[top].count; ++j)
+    {
+        if (h[ft[j]] < 0) return -1;
+    }
+    return k;
+}
+
+
+SubmergedVolume truncatedPrismVolume
+(
+    const FacePlane& bottom,
+    const Mat3& R,
+    const Vec3& x,
+    double level
+)
+{
+    // truncatedPrismVolume's integrals over the cap, with the height linear
+    // on it: h = hc + gX X + gY Y (X, Y the cap's coordinates about its
+    // centroid c, whose first moments vanish), r = c + X ex + Y ey:
+    //   int h dA = A hc,
+    //   int h r dA = A hc c + (gX Mxx + gY Mxy) ex + (gX Mxy + gY Myy) ey,
+    //   int h^2 dA = A hc^2 + gX^2 Mxx + 2 gX gY Mxy + gY^2 Myy
+    SubmergedVolume result;
+    result.volume = 0;
+    result.centroid = x;
+    const Vec3 ex = R*bottom.ex;
+    const Vec3 ey = R*bottom.ey;
+    const Vec3 c = R*bottom.centroid;
+    const Vec3 nb = R*bottom.normal;
+    const double az = -nb.z();
+    const double A = bottom.area;
+    const double Mxx = bottom.moment2[0];
+    const double Mxy = bottom.moment2[1];
+    const double Myy = bottom.moment2[2];
+    const double hc = c.z() + (x.z() - level);
+    const double gX = ex.z(), gY = ey.z();
+    const double I0 = A*hc;
+    const Vec3 I1 =
+        (A*hc)*c + (gX*Mxx + gY*Mxy)*ex + (gX*Mxy + gY*Myy)*ey;
+    const double I2 =
+        A*hc*hc + gX*gX*Mxx + 2*gX*gY*Mxy + gY*gY*Myy;
+    const double vol = -I0/az;
+    if (vol > 0)
+    {
+        result.volume = vol;
+        result.centroid = x + (-I1/az - (0.5*I2/(az*az))*nb)/vol;
+    }
+    return result;
+}
+
+
 SubmergedVolume truncatedPrismVolume
 (
     const PolyhedronView& P,

@@ -183,7 +183,8 @@ void computeWaterFrame
     const Vec3& x,
     double level,
     WaterFrame& frame,
-    bool withDry
+    bool withDry,
+    const PrismCaps* caps
 )
 {
     frame.hasVolume = false;
@@ -191,6 +192,7 @@ void computeWaterFrame
     frame.nWet = 0;
     frame.wetBegin[0] = 0;
     frame.R = R;
+    frame.caps = caps;
     frame.x = x;
     frame.level = level;
 
@@ -269,10 +271,11 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     static thread_local PolyhedronBuffer outerBuffer;
     // Invalidate first: an Error below leaves no half-computed frame behind
     frame.worldInstance = -1;
+    const DilatedShape& shape = world.shapeOf(i);
     computeWaterFrame
     (
-        world.shapeOf(i).outer(outerBuffer), b.rotation(), b.x, level, frame,
-        withDry
+        shape.outer(outerBuffer), b.rotation(), b.x, level, frame, withDry,
+        shape.prismCaps()
     );
     frame.worldInstance = world.instance();
     frame.evaluation = world.evaluation();
@@ -295,6 +298,7 @@ const SubmergedVolume& frameVolume
     SubmergedVolume& result = frame.volume;
     frame.hasVolume = true;
     frame.prismBottom = -1;
+    frame.prismBottomPlane = nullptr;
 
     // As submergedVolume: the truncated prism, else the wet polygons; the
     // tetrahedra where the sums would cancel (entirely below); polyhedra
@@ -317,6 +321,20 @@ const SubmergedVolume& frameVolume
             P, frame.R, frame.x, frame.level
         );
         return result;
+    }
+    if (frame.caps)
+    {
+        // A floe: its kept lower cap, no search of the faces and no loop
+        // over the cap's vertices
+        const int k = lowerCapBelow(*frame.caps, P, frame.R, frame.h);
+        if (k >= 0)
+        {
+            const FacePlane& cap = frame.caps->cap[k];
+            frame.prismBottom = cap.face;
+            frame.prismBottomPlane = &cap;
+            result = truncatedPrismVolume(cap, frame.R, frame.x, frame.level);
+            return result;
+        }
     }
     const int bottom = truncatedPrismBottom(P, frame.R, frame.h);
     if (bottom >= 0)

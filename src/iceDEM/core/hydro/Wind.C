@@ -149,12 +149,6 @@ Wind::Wind
 }
 
 
-void Wind::prepare(const World& world)
-{
-    skinPlanes_.resize(world.bodies().size());
-}
-
-
 const char* Wind::name() const
 {
     return "wind";
@@ -202,11 +196,7 @@ void Wind::bodyWind
         const WaterFrame& frame = waterFrame(world, i, level_);
         if (frameDry(P, frame))
         {
-            frameWind
-            (
-                P, frame, b, omega, Ua, world.shapeOf(i).serial(),
-                skinPlanes_.slot(i), F, M
-            );
+            frameWind(P, frame, b, omega, Ua, F, M);
             return;
         }
     }
@@ -280,8 +270,6 @@ void Wind::frameWind
     const Body& b,
     const Vec3& omega,
     const Vec3& Ua,
-    std::uint64_t shape,
-    SkinFacePlane* slot,
     Vec3& F,
     Vec3& M
 ) const
@@ -305,7 +293,7 @@ void Wind::frameWind
         {
             return facetCoefficient(n, skin);
         },
-        shape, slot, F, M
+        frame.caps, F, M
     );
 }
 
