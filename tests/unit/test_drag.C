@@ -732,14 +732,8 @@ TEST(Drag, skinOfAWholeFaceFromItsPlane)
     int faces = 0;
     for (int trial = 0; trial < 40; ++trial)
     {
-        const int sides = 3 + trial % 10;
-        std::vector<Vec2> polygon;
-        const double a = 2 + 6*std::abs(U(gen)), b = 2 + 6*std::abs(U(gen));
-        for (int k = 0; k < sides; ++k)
-        {
-            const double th = 2*M_PI*(k + 0.4*std::abs(U(gen)))/sides;
-            polygon.push_back(Vec2(a*std::cos(th), b*std::sin(th)));
-        }
+        const std::vector<Vec2> polygon =
+            test::hydro::randomOutline(gen, 3 + trial % 10);
         const ConvexPolyhedron prism =
             ConvexPolyhedron::prism(polygon, -0.5, 0.5 + std::abs(U(gen)));
         const PolyhedronView P = prism.view();

@@ -14,6 +14,7 @@ Description
 #include "hydro/WaterClip.H"
 #include "hydro/WaterFrame.H"
 #include "geometry/DilatedShape.H"
+#include "hydroFixtures.H"
 
 #include <gtest/gtest.h>
 
@@ -356,14 +357,8 @@ TEST(WaterClip, truncatedPrismFromItsKeptCap)
     double worstVolume = 0, worstCentre = 0;
     for (int trial = 0; trial < 40; ++trial)
     {
-        const int sides = 3 + trial % 10;
-        std::vector<Vec2> polygon;
-        const double a = 2 + 6*std::abs(U(gen)), b = 2 + 6*std::abs(U(gen));
-        for (int k = 0; k < sides; ++k)
-        {
-            const double th = 2*M_PI*(k + 0.4*std::abs(U(gen)))/sides;
-            polygon.push_back(Vec2(a*std::cos(th), b*std::sin(th)));
-        }
+        const std::vector<Vec2> polygon =
+            test::hydro::randomOutline(gen, 3 + trial % 10);
         const double z0 = -0.2 - std::abs(U(gen)), z1 = 0.3 + std::abs(U(gen));
         const ConvexPolyhedron prism = ConvexPolyhedron::prism(polygon, z0, z1);
         const PolyhedronView P = prism.view();
@@ -375,7 +370,9 @@ TEST(WaterClip, truncatedPrismFromItsKeptCap)
             EXPECT_EQ(std::abs(P.faces()[cap.face].normal.z()), 1);
             EXPECT_EQ(caps.of(cap.face), &cap);
         }
-        const double size = std::max(a, b) + z1 - z0;
+        double radius = 0;
+        for (const Vec2& v : polygon) radius = std::max(radius, v.norm());
+        const double size = radius + z1 - z0;
         for (int pose = 0; pose < 50; ++pose)
         {
             const Mat3 R = Eigen::AngleAxisd

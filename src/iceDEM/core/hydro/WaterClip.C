@@ -228,6 +228,37 @@ void splitPolygon
 }
 
 
+namespace
+{
+
+//- Whether face bottom of P lies entirely below the water and face top
+//  not at all (vertex heights h): a prism's waterline on its sides only
+bool capsAcrossWaterline
+(
+    const PolyhedronView& P,
+    int bottom,
+    int top,
+    const double* h
+)
+{
+    const auto faces = P.faces();
+    const int* faceVertices = P.faceVertices().data();
+    const int* fb = faceVertices + faces[bottom].begin;
+    for (int k = 0; k < faces[bottom].count; ++k)
+    {
+        if (!(h[fb[k]] < 0)) return false;
+    }
+    const int* ft = faceVertices + faces[top].begin;
+    for (int k = 0; k < faces[top].count; ++k)
+    {
+        if (h[ft[k]] < 0) return false;
+    }
+    return true;
+}
+
+} // anonymous namespace
+
+
 int truncatedPrismBottom
 (
     const PolyhedronView& P,
@@ -274,18 +305,7 @@ int truncatedPrismBottom
     const double nz = up.dot(axis);
     const int bottom = nz < 0 ? cap0 : cap1;
     const int top = nz < 0 ? cap1 : cap0;
-    const int* faceVertices = P.faceVertices().data();
-    const int* fb = faceVertices + faces[bottom].begin;
-    for (int k = 0; k < faces[bottom].count; ++k)
-    {
-        if (!(h[fb[k]] < 0)) return -1;
-    }
-    const int* ft = faceVertices + faces[top].begin;
-    for (int k = 0; k < faces[top].count; ++k)
-    {
-        if (h[ft[k]] < 0) return -1;
-    }
-    return bottom;
+    return capsAcrossWaterline(P, bottom, top, h) ? bottom : -1;
 }
 
 
@@ -394,21 +414,9 @@ int lowerCapBelow
     const Vec3 up = R.row(2).transpose();
     const double nz = up.dot(caps.cap[0].normal);
     const int k = nz < 0 ? 0 : 1;
-    const auto faces = P.faces();
-    const int* faceVertices = P.faceVertices().data();
-    const int bottom = caps.cap[k].face;
-    const int top = caps.cap[1 - k].face;
-    const int* fb = faceVertices + faces[bottom].begin;
-    for (int j = 0; j < faces[bottom].count; ++j)
-    {
-        if (!(h[fb[j]] < 0)) return -1;
-    }
-    const int* ft = faceVertices + faces[top].begin;
-    for (int j = 0; j < faces[top].count; ++j)
-    {
-        if (h[ft[j]] < 0) return -1;
-    }
-    return k;
+    return
+        capsAcrossWaterline(P, caps.cap[k].face, caps.cap[1 - k].face, h)
+      ? k : -1;
 }
 
 
