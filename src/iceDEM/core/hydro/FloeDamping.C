@@ -84,7 +84,8 @@ struct WaterplaneSums
 //  coordinates about its centroid, whose first moments vanish), so the
 //  lid's area and its second moments about its centroid lc are the cap's
 //  times minus the map's Jacobian (u x v)_z (negative: the cap runs
-//  clockwise seen from above)
+//  clockwise seen from above); equal up to round-off
+//  (FloeDamping.waterlinePolygonAgreesWithTheWetFaces)
 Waterplane capWaterplane(const FacePlane& bottom, const WaterFrame& frame)
 {
     const Mat3& R = frame.R;
