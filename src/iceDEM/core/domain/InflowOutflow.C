@@ -454,32 +454,71 @@ int InflowOutflow::addInsertedBody(World& world, int id, const Floe& floe) const
 double InflowOutflow::upstreamConcentration(const World& world) const
 {
     const int a = settings_.axis;
+    const int lateral = 1 - a;
     const double latLo = settings_.windowLateralLo;
     const double latHi = settings_.windowLateralHi;
     const double s0 = settings_.windowLo;
     const double s1 = settings_.windowHi;
+    // Across a periodic side a floe on the seam lies partly in the window's
+    // image one period away
+    const Domain* domain = world.domain();
+    const double period =
+        domain && domain->periodic(lateral) ? domain->length(lateral) : 0;
+    const int images = period > 0 ? 1 : 0;
+
     const std::vector<Body>& bodies = world.bodies();
+    std::vector<Vec2> outline;
     double area = 0;
     for (std::size_t i = 0; i < bodies.size(); ++i)
     {
         const Body& b = bodies[i];
         if (!b.isFree()) continue;
-        const double s = along(b.x);
-        const double l = b.x[1 - a];
-        if (s < s0 || s >= s1 || l < latLo || l >= latHi) continue;
         const DilatedShape& S = world.shapeOf(int(i));
+        const double s = along(b.x);
+        const double reach = S.boundingRadius() + S.radius();
+        if (s + reach < s0 || s - reach >= s1) continue;
+
+        const Mat3 R = b.rotation();
+        const PolyhedronView core = S.core().view();
+        const ArrayView<Vec3> vertices = core.vertices();
         double zLo = std::numeric_limits<double>::max();
         double zHi = -zLo;
-        for (const Vec3& v : S.core().vertices())
+        for (const Vec3& v : vertices)
         {
             // Height along the body's vertical: prisms stay upright in the
             // input frame; the core's extent along the rotated z axis
-            const double z = (b.rotation()*v)[2];
+            const double z = (R*v)[2];
             zLo = std::min(zLo, z);
             zHi = std::max(zHi, z);
         }
         const double h = zHi - zLo + 2*S.radius();
-        if (h > 0) area += S.facetedVolume()/h;
+        if (!(h > 0)) continue;
+
+        // The share of the core's plan outline inside the window: the
+        // upward faces of a convex polyhedron projected on the horizontal
+        // plane tile its outline, each clipped to the window (a floe on
+        // the window's edge counts by the part inside, not by its centre)
+        double whole = 0, inside = 0;
+        for (const PolyhedronView::Face face : core.faces())
+        {
+            if ((R*face.normal)[2] <= 0) continue;
+            outline.clear();
+            for (int k = 0; k < face.count; ++k)
+            {
+                const Vec3 p =
+                    b.x + R*vertices[core.faceVertices()[face.begin + k]];
+                outline.emplace_back(along(p), p[lateral]);
+            }
+            whole += std::abs(polygonSignedArea(outline));
+            for (int m = -images; m <= images; ++m)
+            {
+                inside += polygonRectangleArea
+                (
+                    outline, s0, s1, latLo + m*period, latHi + m*period
+                );
+            }
+        }
+        if (whole > 0) area += S.facetedVolume()/h*inside/whole;
     }
     return area/((s1 - s0)*(latHi - latLo));
 }
