@@ -1242,7 +1242,7 @@ TEST(inflowOutflow, anObstacleStopsThePackInItsShadowAndTheLanesBesideStayAtTheT
     // the block on one side and 25 m across the periodic side on the
     // other; upstreamConcentration, which counts a floe on the window's
     // edge by its part inside) within 2 % of the target (0.05-0.44 % over
-    // six seeds); the lanes next to the shadow hold the ice the block
+    // five initial fields); the lanes next to the shadow hold the ice the block
     // turns aside (7-9 % above the target: a window over them moved with
     // round-off); no inserted floe
     // touches anything (the World refuses it); in + initial - out = floes
