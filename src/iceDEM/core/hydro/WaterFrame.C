@@ -241,10 +241,37 @@ void computeWaterFrame
 }
 
 
+namespace
+{
+
+//- A thread's water frame and its room for a derived outer polyhedron (no
+//  allocation once it has grown to the largest floe; the world keeps them
+//  for models that read them)
+struct FrameSlot
+{
+    WaterFrame frame;
+    PolyhedronBuffer outerBuffer;
+};
+
+//- This thread's slot (one per thread: the models call waterFrame body by
+//  body). Not inlined, so that waterFrame finds the slot's address once: in
+//  a shared library each use of a thread-local's address is a call of
+//  __tls_get_addr, which GCC repeats at every use rather than keep the
+//  address (2.4 % of the floating field's instructions, about four calls
+//  per waterFrame; tests/benchmark/README.md, forty-third round)
+[[gnu::noinline]] FrameSlot& thisThreadsSlot()
+{
+    static thread_local FrameSlot slot;
+    return slot;
+}
+
+} // anonymous namespace
+
+
 const WaterFrame& waterFrame(const World& world, int i, double level)
 {
-    // One slot per thread: the models call it body by body
-    static thread_local WaterFrame frame;
+    FrameSlot& slot = thisThreadsSlot();
+    WaterFrame& frame = slot.frame;
 
     const Body& b = world.bodies()[i];
     // Whether a wind read the last frame's dry side (of this world): then
@@ -265,16 +292,12 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
         return frame;
     }
 
-    // This thread's room for a derived outer polyhedron (no allocation once
-    // it has grown to the largest floe; the world keeps them for models
-    // that read them)
-    static thread_local PolyhedronBuffer outerBuffer;
     // Invalidate first: an Error below leaves no half-computed frame behind
     frame.worldInstance = -1;
     const DilatedShape& shape = world.shapeOf(i);
     computeWaterFrame
     (
-        shape.outer(outerBuffer), b.rotation(), b.x, level, frame, withDry,
+        shape.outer(slot.outerBuffer), b.rotation(), b.x, level, frame, withDry,
         shape.prismCaps()
     );
     frame.worldInstance = world.instance();
