@@ -60,10 +60,6 @@ void Buoyancy::addForces
         return;
     }
 
-    // This thread's room for derived outer polyhedra (no allocation once
-    // it has grown to the largest floe)
-    static thread_local PolyhedronBuffer outerBuffer;
-
     const std::vector<Body>& bodies = world.bodies();
     for (int i = begin; i < end; ++i)
     {
@@ -73,7 +69,7 @@ void Buoyancy::addForces
         // The floe's frame, shared with drag and floe damping
         const SubmergedVolume& sub = frameVolume
         (
-            world.shapeOf(i).outer(outerBuffer),
+            outerForModels(world.shapeOf(i)),
             waterFrame(world, i, water_.level)
         );
         if (sub.volume > 0)

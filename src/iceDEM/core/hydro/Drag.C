@@ -221,10 +221,7 @@ void Drag::bodyDrag(const World& world, int i, Vec3& F, Vec3& M) const
     M.setZero();
 
     const Body& b = world.bodies()[i];
-    // This thread's room for derived outer polyhedra (no allocation once
-    // it has grown to the largest floe)
-    static thread_local PolyhedronBuffer outerBuffer;
-    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
+    const PolyhedronView P = outerForModels(world.shapeOf(i));
 
     Vec3 current;
     if

@@ -270,8 +270,7 @@ Vec3 FloeDamping::coefficients(const World& world, int i) const
     const double rhoG = water_.density*world.settings().gravity.norm();
     if (!b.isFree() || rhoG == 0) return c;
 
-    static thread_local PolyhedronBuffer outerBuffer;
-    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
+    const PolyhedronView P = outerForModels(world.shapeOf(i));
     // The floe's frame, shared with buoyancy and drag
     const WaterFrame& frame = waterFrame(world, i, water_.level);
     const Mat3& R = frame.R;

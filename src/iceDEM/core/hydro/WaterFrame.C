@@ -268,6 +268,13 @@ struct FrameSlot
 } // anonymous namespace
 
 
+[[gnu::noinline]] PolyhedronBuffer& modelsOuterBuffer()
+{
+    static thread_local PolyhedronBuffer buffer;
+    return buffer;
+}
+
+
 const WaterFrame& waterFrame(const World& world, int i, double level)
 {
     FrameSlot& slot = thisThreadsSlot();
@@ -295,9 +302,11 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     // Invalidate first: an Error below leaves no half-computed frame behind
     frame.worldInstance = -1;
     const DilatedShape& shape = world.shapeOf(i);
+    const ConvexPolyhedron* own = shape.ownOuter();
     computeWaterFrame
     (
-        shape.outer(slot.outerBuffer), b.rotation(), b.x, level, frame, withDry,
+        own ? own->view() : shape.outer(slot.outerBuffer),
+        b.rotation(), b.x, level, frame, withDry,
         shape.prismCaps()
     );
     frame.worldInstance = world.instance();

@@ -184,9 +184,7 @@ void Wind::bodyWind
     const Body& b = world.bodies()[i];
     if (!b.isFree()) return;
 
-    // This thread's room for derived outer polyhedra
-    static thread_local PolyhedronBuffer outerBuffer;
-    const PolyhedronView P = world.shapeOf(i).outer(outerBuffer);
+    const PolyhedronView P = outerForModels(world.shapeOf(i));
     const Mat3 R = b.rotation();
     const Vec3 omega = b.omega(R);
 
