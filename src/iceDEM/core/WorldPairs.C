@@ -108,7 +108,7 @@ World::PairMotion World::pairMotion(const ContactPair& p) const
 }
 
 
-Vec3 World::relativeVelocity(const PairMotion& pm, const Vec3& x) const
+inline Vec3 World::relativeVelocity(const PairMotion& pm, const Vec3& x) const
 {
     Vec3 vRel = -(pm.bi->v + pm.omegaI->cross(x - pm.bi->x));
     if (pm.bj) vRel += pm.bj->v + pm.omegaJ->cross(x - pm.xJ);

@@ -29,34 +29,46 @@ const char* featurePairName(FeaturePair t)
 namespace
 {
 
+//- R* of a contact: one for every feature pair (r_i r_j/(r_i + r_j), r_i
+//  on a wall) where oneRadius, else the feature pair's own (method.md
+//  section 3), an edge pair's capped at maxEdgeRadiusRatio sqrt(r_i r_j)
+inline double hertzRadius
+(
+    const ContactGeometry& g,
+    bool oneRadius,
+    double maxEdgeRadiusRatio
+)
+{
+    const double ri = g.radiusI, rj = g.radiusJ;
+    if (oneRadius)
+    {
+        return g.type == FeaturePair::vertexWall ? ri : ri*rj/(ri + rj);
+    }
+    switch (g.type)
+    {
+        case FeaturePair::vertexVertex:
+            return ri*rj/(ri + rj);
+        case FeaturePair::vertexEdge:
+            return std::sqrt(ri*ri*rj/(ri + rj));
+        case FeaturePair::vertexFace:
+        case FeaturePair::vertexWall:
+            return ri;
+        case FeaturePair::edgeEdge:
+        {
+            const double r = std::sqrt(ri*rj);
+            return std::min(r/g.sinAngle, maxEdgeRadiusRatio*r);
+        }
+    }
+    return ri;
+}
+
+
 //- Hertz with the equivalent radius of each feature pair
 class HertzLaw : public ContactLaw
 {
 public:
-    using ContactLaw::ContactLaw;
-
+    explicit HertzLaw(const ContactLawSettings& s) : ContactLaw(s, false) {}
     const char* name() const override { return "hertz"; }
-
-    double equivalentRadius(const ContactGeometry& g) const override
-    {
-        const double ri = g.radiusI, rj = g.radiusJ;
-        switch (g.type)
-        {
-            case FeaturePair::vertexVertex:
-                return ri*rj/(ri + rj);
-            case FeaturePair::vertexEdge:
-                return std::sqrt(ri*ri*rj/(ri + rj));
-            case FeaturePair::vertexFace:
-            case FeaturePair::vertexWall:
-                return ri;
-            case FeaturePair::edgeEdge:
-            {
-                const double r = std::sqrt(ri*rj);
-                return std::min(r/g.sinAngle, settings_.maxEdgeRadiusRatio*r);
-            }
-        }
-        return ri;
-    }
 };
 
 
@@ -64,27 +76,18 @@ public:
 class HertzSimplifiedLaw : public ContactLaw
 {
 public:
-    using ContactLaw::ContactLaw;
-
+    explicit HertzSimplifiedLaw(const ContactLawSettings& s) : ContactLaw(s, true) {}
     const char* name() const override { return "hertzSimplified"; }
-
-    double equivalentRadius(const ContactGeometry& g) const override
-    {
-        if (g.type == FeaturePair::vertexWall)
-        {
-            return g.radiusI;
-        }
-        return g.radiusI*g.radiusJ/(g.radiusI + g.radiusJ);
-    }
 };
 
 } // anonymous namespace
 
 
-ContactLaw::ContactLaw(const ContactLawSettings& s)
+ContactLaw::ContactLaw(const ContactLawSettings& s, bool oneRadius)
 :
     settings_(s),
-    mindlin_(s.tangentialModel == "mindlin")
+    mindlin_(s.tangentialModel == "mindlin"),
+    oneRadius_(oneRadius)
 {
     if (s.tangentialModel != "mindlin" && s.tangentialModel != "ratio")
     {
@@ -103,6 +106,12 @@ ContactLaw::ContactLaw(const ContactLawSettings& s)
     {
         throw Error("maxEdgeRadiusRatio must be >= 1", "maxEdgeRadiusRatio");
     }
+}
+
+
+double ContactLaw::equivalentRadius(const ContactGeometry& g) const
+{
+    return hertzRadius(g, oneRadius_, settings_.maxEdgeRadiusRatio);
 }
 
 
@@ -287,7 +296,8 @@ ContactResult ContactLaw::evaluate
 {
     const LawInput<double, Vec3> in
     {
-        equivalentRadius(g), g.overlap, g.weight, g.normal, vRel,
+        hertzRadius(g, oneRadius_, settings_.maxEdgeRadiusRatio),
+        g.overlap, g.weight, g.normal, vRel,
         g.weightGradientX, g.weightGradient
     };
     LawOutput<double, Vec3> out;
@@ -315,7 +325,11 @@ void ContactLaw::evaluateTwo
     using namespace twoLanes;
     const LawInput<Double2, Vec3x2> in
     {
-        Double2{equivalentRadius(*g[0]), equivalentRadius(*g[1])},
+        Double2
+        {
+            hertzRadius(*g[0], oneRadius_, settings_.maxEdgeRadiusRatio),
+            hertzRadius(*g[1], oneRadius_, settings_.maxEdgeRadiusRatio)
+        },
         Double2{g[0]->overlap, g[1]->overlap},
         Double2{g[0]->weight, g[1]->weight},
         lanes(g[0]->normal, g[1]->normal),
