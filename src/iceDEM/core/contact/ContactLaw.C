@@ -109,12 +109,6 @@ ContactLaw::ContactLaw(const ContactLawSettings& s, bool oneRadius)
 }
 
 
-double ContactLaw::equivalentRadius(const ContactGeometry& g) const
-{
-    return hertzRadius(g, oneRadius_, settings_.maxEdgeRadiusRatio);
-}
-
-
 std::vector<std::string> ContactLaw::names()
 {
     return {"hertz", "hertzSimplified"};

@@ -158,13 +158,8 @@ DilatedShape::DilatedShape
 }
 
 
-PolyhedronView DilatedShape::outer(PolyhedronBuffer& buffer) const
+PolyhedronView DilatedShape::derivedOuter(PolyhedronBuffer& buffer) const
 {
-    if (storedOuter_)
-    {
-        return storedOuter_->view();
-    }
-
     const auto V = core_.vertices();
     const auto F = core_.faces();
     buffer.vertices.resize(V.size());

@@ -302,11 +302,9 @@ const WaterFrame& waterFrame(const World& world, int i, double level)
     // Invalidate first: an Error below leaves no half-computed frame behind
     frame.worldInstance = -1;
     const DilatedShape& shape = world.shapeOf(i);
-    const ConvexPolyhedron* own = shape.ownOuter();
     computeWaterFrame
     (
-        own ? own->view() : shape.outer(slot.outerBuffer),
-        b.rotation(), b.x, level, frame, withDry,
+        shape.outer(slot.outerBuffer), b.rotation(), b.x, level, frame, withDry,
         shape.prismCaps()
     );
     frame.worldInstance = world.instance();
