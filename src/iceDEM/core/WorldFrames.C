@@ -5,13 +5,7 @@
 
 #include "World.H"
 #include "worldDetail.H"
-#include "contact/NarrowPhase.H"
-#include "contact/NeighbourList.H"
 #include "prefetch.H"
-
-#include <algorithm>
-#include <cmath>
-#include <sstream>
 
 namespace iceDEM
 {

@@ -10,8 +10,6 @@
 #include "prefetch.H"
 
 #include <algorithm>
-#include <cmath>
-#include <sstream>
 
 namespace iceDEM
 {
