@@ -398,22 +398,18 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // a vertex-face corner; seed 39, 2.0e-4: a nearly parallel crossing fading
 // in a few steps; the designs tried before are listed in README.md's
 // history of issue 18). The excess potential (NarrowPhase.H), continuous by
-// construction: every impact within 6.4e-6 of the total energy, drift
-// within 1.1e-5 (2,080 impacts). About 15 s of CPU
+// construction: every impact within 6.0e-6 of the total energy, drift
+// within 1.9e-5 (40 pairs, 2,249 impacts). Every seed runs: seeds 15, 23
+// and 38, whose ten-point hull could not be dilated before the hull kept
+// its faces consistent (geometry.everyHullWithVerticesOfManyFacesDilates),
+// were skipped as errors until then (37 pairs, 2,092 impacts). About 15 s
+// of CPU
 TEST(handover, sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
     int impacts = 0;
     for (unsigned seed = 1; seed <= 40; ++seed)
     {
-        ImpactRecord r;
-        try
-        {
-            r = randomPairInABox(seed, 5.0, "hertzSimplified");
-        }
-        catch (const Error&)
-        {
-            continue;   // a hull with a vertex on another's face
-        }
+        const ImpactRecord r = randomPairInABox(seed, 5.0, "hertzSimplified");
         impacts += r.impacts;
         std::printf("seed %u: %d impacts, worst %.3g, drift %.3g\n", seed, r.impacts, r.worst, r.drift);
         EXPECT_LT(r.worst, impactBound) << "seed " << seed;
@@ -428,9 +424,10 @@ TEST(handover, sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 // to 400 steps). The pairs that fail at one step size are a sample of the
 // configurations that jump: on main 2, 6 and 2 pairs failed (seeds 19 and
 // 39; 19, 22, 27, 36, 37 and 39; 5 and 19), up to 1.8e-2 of the energy in
-// one impact. The excess potential (NarrowPhase.H): 111 pair-runs, 6,318
-// impacts, the worst impact 6.4e-6, 4.6e-6 and 2.8e-6 of the total energy
-// at the three steps, drift at most 1.1e-5. Its first form (the boundary
+// one impact. The excess potential (NarrowPhase.H): 120 pair-runs, 6,795
+// impacts, the worst impact 6.0e-6, 4.6e-6 and 2.8e-6 of the total energy
+// at the three steps, drift at most 1.9e-5 (111 pair-runs while seeds 15,
+// 23 and 38 were skipped, see above). Its first form (the boundary
 // part a plain minimum of the four end distances) failed 2, 4 and 1 pairs
 // (kinks where two ends tie, up to 1.7e-3); with a blend of the ends
 // (weights g^-2), 0, 1 and 1 (seed 39: an edge lying along another edge,
@@ -443,15 +440,7 @@ TEST(handover, sevenAndTenVertexHullsAtThreeTimeSteps)
         int impacts = 0;
         for (unsigned seed = 1; seed <= 40; ++seed)
         {
-            ImpactRecord r;
-            try
-            {
-                r = randomPairInABox(seed, 5.0, "hertzSimplified", dt);
-            }
-            catch (const Error&)
-            {
-                continue;   // a hull with a vertex on another's face
-            }
+            const ImpactRecord r = randomPairInABox(seed, 5.0, "hertzSimplified", dt);
             impacts += r.impacts;
             std::printf
             (
@@ -567,9 +556,26 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
     w.initialise();
 
     // Deepest overlap at distance d (infinite if the cores intersect), and
-    // the total force on B and the sorted feature-pair types there
+    // the total force on B and the sorted feature-pair types there. Cores
+    // that intersect are not stepped: the World stops a run whose bodies
+    // overlap by their radii's sum (beyond the contact model), which the
+    // bisection's first, deep poses would reach
     std::vector<int> types;
     Vec3 F = Vec3::Zero();
+    auto coresOfABIntersect = [&]()
+    {
+        auto view = [&](const Body& body, int shape, std::vector<Vec3>& v)
+        {
+            const Mat3 R = body.rotation();
+            v.clear();
+            for (const Vec3& p : w.shapes()[shape].core().vertices()) v.push_back(R*p + body.x);
+            return BodyView{&w.shapes()[shape], v.data(), R, body.x, body.q};
+        };
+        std::vector<Vec3> wa, wb;
+        const BodyView va = view(w.bodies()[0], sa, wa);
+        const BodyView vb = view(w.bodies()[1], sb, wb);
+        return coresIntersect(va, vb);
+    };
     auto place = [&](const Quat& q, double d)
     {
         Body& b = w.bodies()[1];
@@ -577,6 +583,7 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
         b.x = d*dir;
         b.v.setZero();
         b.L.setZero();
+        if (coresOfABIntersect()) return std::numeric_limits<double>::infinity();
         w.step();
         types.clear();
         F.setZero();
@@ -588,18 +595,7 @@ ForceSweep forceSweep(unsigned seed, const std::string& model, int poses, double
             F += c.j == 1 ? c.forceOnJ : Vec3(-c.forceOnJ);
         }
         std::sort(types.begin(), types.end());
-        const Body& a = w.bodies()[0];
-        auto view = [&](const Body& body, int shape, std::vector<Vec3>& v)
-        {
-            const Mat3 R = body.rotation();
-            v.clear();
-            for (const Vec3& p : w.shapes()[shape].core().vertices()) v.push_back(R*p + body.x);
-            return BodyView{&w.shapes()[shape], v.data(), R, body.x, body.q};
-        };
-        std::vector<Vec3> wa, wb;
-        const BodyView va = view(a, sa, wa);
-        const BodyView vb = view(b, sb, wb);
-        return coresIntersect(va, vb) ? std::numeric_limits<double>::infinity() : deepest;
+        return coresOfABIntersect() ? std::numeric_limits<double>::infinity() : deepest;
     };
 
     ForceSweep r;
@@ -640,20 +636,11 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
     const int poses = std::getenv("SWEEP_POSES") ? std::atoi(std::getenv("SWEEP_POSES")) : 1440;
     auto rel = [](double a, double b) { return std::abs(a - b)/std::max(std::abs(a), std::abs(b)); };
     double hertzJump = 0, simplifiedJump = 0, ratioJump = 0, ratioSmooth = 0;
-    int handOvers = 0, pairs = 0;
-    for (unsigned seed = 101; pairs < 5; ++seed)
+    int handOvers = 0;
+    for (unsigned seed = 101; seed <= 105; ++seed)
     {
-        ForceSweep h, hs;
-        try
-        {
-            h = forceSweep(seed, "hertz", poses, 5e-3);
-            hs = forceSweep(seed, "hertzSimplified", poses, 5e-3);
-        }
-        catch (const Error&)
-        {
-            continue;   // a hull with a vertex on another's face
-        }
-        ++pairs;
+        const ForceSweep h = forceSweep(seed, "hertz", poses, 5e-3);
+        const ForceSweep hs = forceSweep(seed, "hertzSimplified", poses, 5e-3);
         // Raw jumps of |F| at hand-overs, and the jump of the ratio
         // |F_hertz|/|F_hertzSimplified| (same poses, same contacts: only R*
         // differs), which cancels the geometric part of a jump
@@ -701,7 +688,7 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
     // vertex-vertex terms follow it, and the edge-edge term keeps its type
     // and fades out (its weight -> 0) at the end of its edge instead of
     // handing its force over. Measured: 0.229 (seed 103; 0.159 at seeds
-    // 101, 106, 107, 108), where a vertex term and a subtracted
+    // 101, 102 and 105, 0.165 at 104), where a vertex term and a subtracted
     // vertex-vertex term change type at one pose. On main (windowed feature
     // pairs) the edge-edge contact at its cap k r handed over to
     // vertex-edge at full force: 1 - 1/sqrt(k sqrt(2)) = 0.734 for k = 10,
@@ -724,25 +711,17 @@ TEST(handover, hertzForceJumpAtHandOverIsBounded)
 // being the 2880-pose sweep (same poses, bit for bit): for each pair the
 // largest step between consecutive poses (|dF|/|F|, |dM|/(|F| R_B)) must
 // fall below 0.7 of that at 2880 poses. Measured with the excess potential
-// (NarrowPhase.H): at most 0.623 (main, windows and the merge partition:
-// 0.62; without the partition 0.999)
+// (NarrowPhase.H): at most 0.648 (seed 103, 231 hand-overs in the five
+// pairs; main, windows and the merge partition: 0.62; without the
+// partition 0.999)
 TEST(handover, hertzSimplifiedForceAndMomentAreContinuous)
 {
     const int poses = std::getenv("SWEEP_POSES") ? 2*std::atoi(std::getenv("SWEEP_POSES")) : 5760;
-    int pairs = 0, handOvers = 0;
+    int handOvers = 0;
     double worstRatio = 0;
-    for (unsigned seed = 101; pairs < 5; ++seed)
+    for (unsigned seed = 101; seed <= 105; ++seed)
     {
-        ForceSweep r;
-        try
-        {
-            r = forceSweep(seed, "hertzSimplified", poses, 5e-3);
-        }
-        catch (const Error&)
-        {
-            continue;   // a hull with a vertex on another's face
-        }
-        ++pairs;
+        const ForceSweep r = forceSweep(seed, "hertzSimplified", poses, 5e-3);
         // Largest relative steps of F and M, every pose (stride 1) or every
         // other one (stride 2)
         auto largest = [&](int stride, double& f, double& m)
@@ -786,8 +765,10 @@ TEST(handover, hertzSimplifiedForceAndMomentAreContinuous)
 // drift below 5e-3, and no overlap may reach half the smaller radius (the
 // model's range; Young's modulus is chosen for that, see broadPairInABox).
 // Measured (1 thread) with the excess potential (NarrowPhase.H): 40 pairs,
-// 1,359 impacts, the worst impact 1.5e-6 of the total energy, the worst
-// drift 3.2e-6, overlaps up to 0.38 r (main, windows and the merge
+// 1,397 impacts, the worst impact 1.5e-6 of the total energy, the worst
+// drift 6.6e-6, overlaps up to 0.38 r (1,359 impacts, 1.5e-6, 3.2e-6 while
+// a core that could not be dilated was redrawn: some clouds give other
+// hulls since every hull dilates; main, windows and the merge
 // partition: 1,413 impacts, 9.8e-7, 3.1e-6, 0.33 r). Before the
 // vertex-edge band (main's history) one pair (seed 6) changed the energy
 // by 14 % in one impact

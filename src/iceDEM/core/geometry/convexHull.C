@@ -167,28 +167,26 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
         faceLoops.push_back(vs);
     }
 
-    // Drop vertices that lie on a straight part of a face boundary (they are
-    // on an edge between two faces: both faces drop them)
+    // A corner of a polyhedron belongs to three faces at least. A hull vertex
+    // in two faces lies on the straight edge between them, one in a single
+    // face inside it (CGAL keeps input points on an edge or a face): every
+    // face drops it. A count, not a distance: the faces drop the same
+    // vertices, so they stay closed whatever the lengths of the edges (an
+    // offset core with a vertex of more than three faces has edges of
+    // micrometres beside edges of metres, which a test of the area a
+    // vertex turns dropped from one face but not from the next)
     std::vector<int> uses(verts.size(), 0);
-    bool changed = true;
-    while (changed)
+    for (const auto& loop : faceLoops)
     {
-        changed = false;
-        for (auto& loop : faceLoops)
-        {
-            for (std::size_t k = 0; k < loop.size() && loop.size() > 3; ++k)
-            {
-                const Vec3& a = verts[loop[(k + loop.size() - 1) % loop.size()]];
-                const Vec3& b = verts[loop[k]];
-                const Vec3& c = verts[loop[(k + 1) % loop.size()]];
-                if ((b - a).cross(c - b).norm() < coplanarTolerance*size*size)
-                {
-                    loop.erase(loop.begin() + k);
-                    changed = true;
-                    break;
-                }
-            }
-        }
+        for (int v : loop) ++uses[v];
+    }
+    for (auto& loop : faceLoops)
+    {
+        loop.erase
+        (
+            std::remove_if(loop.begin(), loop.end(), [&](int v) { return uses[v] < 3; }),
+            loop.end()
+        );
     }
 
     // Canonical numbering, independent of CGAL's internal order (which may
