@@ -135,10 +135,7 @@ void World::bodyForces(double dtKick, int slowScale)
         m->prepare(*this);
     }
 
-    #pragma omp parallel if(N >= minParallelBodies)
-    {
-        sumBodyForces(dtKick, slowScale);
-    }
+    parallelRegion(N >= minParallelBodies, [&] { sumBodyForces(dtKick, slowScale); });
 }
 
 

@@ -99,12 +99,15 @@ void World::updateWorldVertices()
 {
     resizeBodyFrames();
     const int N = static_cast<int>(bodies_.size());
-    #pragma omp parallel for schedule(static) if(N >= minParallelBodies)
-    for (int i = 0; i < N; ++i)
+    parallelRegion(N >= minParallelBodies, [&]
     {
-        updateBodyFrame(i);
-        frameEvaluation_[i].store(evaluation_);
-    }
+        #pragma omp for schedule(static)
+        for (int i = 0; i < N; ++i)
+        {
+            updateBodyFrame(i);
+            frameEvaluation_[i].store(evaluation_);
+        }
+    });
 }
 
 } // namespace iceDEM

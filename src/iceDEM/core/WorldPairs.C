@@ -549,10 +549,7 @@ void World::computeForces(double dtTangential)
     ++evaluation_;
     preparePairs();
     const int nPairs = static_cast<int>(nlist_->pairs().size());
-    #pragma omp parallel if(nPairs >= minParallelLoop)
-    {
-        pairForces(dtTangential);
-    }
+    parallelRegion(nPairs >= minParallelLoop, [&] { pairForces(dtTangential); });
     // A start is an outer step's boundary; a body inserted in the middle
     // of an outer step takes the slow kick of the rest of it
     bodyForces(0, std::max(1, bodyForceInterval() - bodyForcePhase_));

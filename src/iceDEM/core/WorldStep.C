@@ -171,7 +171,7 @@ void World::stepBy(double dt)
     // One team for the first half step, the world frames, the neighbour
     // list and the contacts (fewer fork-joins and barriers: on a loaded
     // machine each waits for the slowest thread)
-    #pragma omp parallel if(N >= minParallelBodies)
+    parallelRegion(N >= minParallelBodies, [&]
     {
         // First half kick, drift, rotation; then the neighbour list's
         // check (some body moved more than skin/2) and the body's motion
@@ -251,7 +251,7 @@ void World::stepBy(double dt)
         pairForces(dt);
 
         if (oneRegion) sumBodyForces(dt, slowStep ? interval : 0);
-    }
+    });
     checkOverlapRange();
 
     // Body-force models: their serial preparation, then the body sums and
