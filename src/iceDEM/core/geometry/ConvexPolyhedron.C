@@ -84,9 +84,15 @@ ConvexPolyhedron::ConvexPolyhedron
         f.offset = f.normal.dot(c);
         for (int a : loop)
         {
-            if (std::abs(f.normal.dot(vertices[a]) - f.offset) > tol)
+            const double off = std::abs(f.normal.dot(vertices[a]) - f.offset);
+            if (off > tol)
             {
-                throw Error("a face is not planar", "points");
+                std::ostringstream msg;
+                msg << "a face is not planar: its vertex (" << vertices[a].transpose()
+                    << ") lies " << off << " from the plane of the face, more than "
+                    << tol << " (" << geometryTolerance << " of the polyhedron's size);"
+                    << " points meant to lie in one face must be coplanar to that";
+                throw Error(msg.str(), "points");
             }
         }
         planes.push_back(f);

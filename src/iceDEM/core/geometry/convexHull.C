@@ -40,15 +40,12 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
     {
         throw Error("a convex hull needs at least 4 points", "points");
     }
-    std::vector<Point3> pts;
-    pts.reserve(points.size());
     for (const Vec3& p : points)
     {
         if (!p.allFinite())
         {
             throw Error("a point is not finite", "points");
         }
-        pts.emplace_back(p.x(), p.y(), p.z());
     }
 
     Vec3 lo = points[0], hi = points[0];
@@ -58,6 +55,49 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
         hi = hi.cwiseMax(p);
     }
     const double size = (hi - lo).norm();
+
+    // Points closer than the faces' tolerance to an earlier one are that
+    // one (a point listed twice with rounding): CGAL would keep both, and
+    // the slivers between them have normals of rounding alone
+    std::vector<Point3> pts;
+    pts.reserve(points.size());
+    {
+        std::vector<std::size_t> byX(points.size());
+        for (std::size_t k = 0; k < byX.size(); ++k) byX[k] = k;
+        std::sort
+        (
+            byX.begin(), byX.end(),
+            [&](std::size_t a, std::size_t b) { return points[a].x() < points[b].x(); }
+        );
+        const double merge = coplanarTolerance*size;
+        std::vector<bool> merged(points.size(), false);
+        for (std::size_t a = 0; a < byX.size(); ++a)
+        {
+            for
+            (
+                std::size_t b = a + 1;
+                b < byX.size() && points[byX[b]].x() - points[byX[a]].x() < merge;
+                ++b
+            )
+            {
+                // The later of two close points goes (input order)
+                const std::size_t i = std::min(byX[a], byX[b]);
+                const std::size_t j = std::max(byX[a], byX[b]);
+                if (!merged[i] && (points[i] - points[j]).norm() < merge)
+                {
+                    merged[j] = true;
+                }
+            }
+        }
+        for (std::size_t k = 0; k < points.size(); ++k)
+        {
+            if (!merged[k]) pts.emplace_back(points[k].x(), points[k].y(), points[k].z());
+        }
+    }
+    if (pts.size() < 4)
+    {
+        throw Error("a convex hull needs at least 4 distinct points", "points");
+    }
 
     // A solid hull needs three non-collinear points and a fourth off their plane
     bool solid = false;
@@ -94,7 +134,7 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
     }
 
     // Triangles with their planes
-    struct Tri { std::array<int, 3> v; Vec3 n; double d; };
+    struct Tri { std::array<int, 3> v; Vec3 n; };
     std::vector<Tri> tris;
     for (Mesh::Face_index f : mesh.faces())
     {
@@ -115,7 +155,6 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
             continue;
         }
         t.n = n.normalized();
-        t.d = t.n.dot(verts[t.v[0]]);
         tris.push_back(t);
     }
 
@@ -129,11 +168,20 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
         std::vector<int> members;
         for (std::size_t j = i; j < tris.size(); ++j)
         {
+            // Heights of j's corners over i's plane, from a corner of i:
+            // the same test wherever the body lies (its plane offsets, of
+            // the size of its coordinates, would carry their rounding)
+            const Vec3& origin = verts[tris[i].v[0]];
+            double height = 0;
+            for (int v : tris[j].v)
+            {
+                height = std::max(height, std::abs(tris[i].n.dot(verts[v] - origin)));
+            }
             if
             (
                 group[j] < 0
              && tris[j].n.dot(tris[i].n) > std::cos(coplanarTolerance)
-             && std::abs(tris[j].d - tris[i].d) < coplanarTolerance*size
+             && height < coplanarTolerance*size
             )
             {
                 group[j] = g;
