@@ -135,7 +135,10 @@ bool makeFacePlane(const PolyhedronView& P, int f, FacePlane& plane)
     const auto face = P.faces()[f];
     const int m = face.count;
     if (m > FacePlane::maxVertices) return false;
+    // Zeroed past the face's m corners too (never read; a shape's set-up
+    // only): the compiler cannot see that planeCoordinates reads m of them
     Vec3 q[FacePlane::maxVertices];
+    for (Vec3& v : q) v.setZero();
     for (int k = 0; k < m; ++k)
     {
         q[k] = P.vertices()[P.faceVertex(f, k)];

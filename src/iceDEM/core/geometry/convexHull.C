@@ -28,9 +28,8 @@ namespace
     using Point3 = Kernel::Point_3;
     using Mesh = CGAL::Surface_mesh<Point3>;
 
-    //- Hull triangles whose normals differ by less than this (radians) and
-    //  whose planes are this close (relative to the size) form one face
-    constexpr double coplanarTolerance = 1e-7;
+    //- ConvexPolyhedron::hullTolerance
+    constexpr double coplanarTolerance = ConvexPolyhedron::hullTolerance;
 }
 
 

@@ -34,8 +34,11 @@ void checkHullVertices
 {
     using namespace Foam;
 
+    // A point within the hull's tolerance of a vertex is that vertex (a
+    // point listed twice with rounding is one corner)
     boundBox bb(pointField(points), false);
-    const scalar tol = 1e-9*max(bb.mag(), VSMALL);
+    const scalar tol =
+        ::iceDEM::ConvexPolyhedron::hullTolerance*max(bb.mag(), VSMALL);
 
     forAll(points, k)
     {
