@@ -402,7 +402,7 @@ TEST(handover, edgeLyingOnAFaceHandsOverWithoutAJump)
 // within 1.9e-5 (40 pairs, 2,249 impacts). Every seed runs: seeds 15, 23
 // and 38, whose ten-point hull could not be dilated before the hull kept
 // its faces consistent (geometry.everyHullWithVerticesOfManyFacesDilates),
-// were skipped as errors until then (37 pairs, 2,092 impacts). About 15 s
+// were skipped as errors until then (37 pairs, 2,092 impacts). About 6 s
 // of CPU
 TEST(handover, sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 {
@@ -432,7 +432,7 @@ TEST(handover, sevenAndTenVertexHullsConserveEnergyAtEveryImpact)
 // (kinks where two ends tie, up to 1.7e-3); with a blend of the ends
 // (weights g^-2), 0, 1 and 1 (seed 39: an edge lying along another edge,
 // sine 0.0055, both ends in reach, 1.6e-3). A failing pair's worst impact
-// is listed step by step (listPairContacts). About a minute of CPU
+// is listed step by step (listPairContacts). About 26 s of CPU
 TEST(handover, sevenAndTenVertexHullsAtThreeTimeSteps)
 {
     for (const double dt : {2e-5, 1.5e-5, 1e-5})
