@@ -339,9 +339,11 @@ TEST(geometry, outerPolyhedronDerivedOrStored)
 // polyhedron whose faces are the core's planes moved out by r, one to one,
 // with every vertex on three moved planes at least and inside all of them.
 // Before the hull kept its faces consistent by a count of the faces at a
-// vertex, 202 of 3,999 such cores (seeds 1 to 2,000 of this test's hulls)
-// failed with "the surface is not closed", among them seeds 15, 23 and 38
-// of the hand-over battery (test_handover.C), which that battery skipped
+// vertex, 202 of 3,999 such cores (the hand-over tests' pairs of 7- and
+// 10-point hulls, seeds 1 to 2,000) failed with "the surface is not
+// closed", among them seeds 15, 23 and 38 of the hand-over battery
+// (test_handover.C), which that battery skipped; this test failed at
+// seed 11
 TEST(geometry, everyHullWithVerticesOfManyFacesDilates)
 {
     const double r = 0.05;

@@ -27,9 +27,6 @@ namespace
     using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
     using Point3 = Kernel::Point_3;
     using Mesh = CGAL::Surface_mesh<Point3>;
-
-    //- ConvexPolyhedron::hullTolerance
-    constexpr double coplanarTolerance = ConvexPolyhedron::hullTolerance;
 }
 
 
@@ -55,7 +52,7 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
     }
     const double size = (hi - lo).norm();
 
-    // Points closer than the faces' tolerance to an earlier one are that
+    // Points closer than hullTolerance to an earlier one are that
     // one (a point listed twice with rounding): CGAL would keep both, and
     // the slivers between them have normals of rounding alone
     std::vector<Point3> pts;
@@ -68,7 +65,7 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
             byX.begin(), byX.end(),
             [&](std::size_t a, std::size_t b) { return points[a].x() < points[b].x(); }
         );
-        const double merge = coplanarTolerance*size;
+        const double merge = hullTolerance*size;
         std::vector<bool> merged(points.size(), false);
         for (std::size_t a = 0; a < byX.size(); ++a)
         {
@@ -179,8 +176,8 @@ ConvexPolyhedron ConvexPolyhedron::hull(const std::vector<Vec3>& points)
             if
             (
                 group[j] < 0
-             && tris[j].n.dot(tris[i].n) > std::cos(coplanarTolerance)
-             && height < coplanarTolerance*size
+             && tris[j].n.dot(tris[i].n) > std::cos(hullTolerance)
+             && height < hullTolerance*size
             )
             {
                 group[j] = g;
