@@ -14,6 +14,7 @@ Description
 
 #include "field/IceFloe.H"
 #include "field/VoronoiField.H"
+#include "geometry/DilatedShape.H"
 
 #include <gtest/gtest.h>
 
@@ -258,6 +259,21 @@ TEST(IceFloe, BadInputNamesTheEntry)
     const std::vector<Vec2> square{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
     expectError([&]{ floeCore(square, 0, 0.2, 0.1); }, "thickness");
     expectError([&]{ floeCore(square, 0, 0.1, 0.1); }, "thickness");
+    // Up to 4r the core is thinner than 2r, which no dilated element
+    // allows: refused here by the thickness, not later by the element's
+    // radius
+    expectError([&]{ floeCore(square, 0, 0.3, 0.1); }, "thickness");
+    expectError([&]{ floeCore(square, 0, 0.4, 0.1); }, "thickness");
+    // Above 4r by the tolerance, every floe's core is a valid element
+    for (const double r : {0.01, 0.03, 0.05, 0.1, 0.13, 0.25})
+    {
+        const double h = minThicknessInRadii*r*(1 + 2*defaultFloeTolerance);
+        for (const double zBottom : {0.0, -0.9*h, -703.1})
+        {
+            EXPECT_NO_THROW(DilatedShape(floeCore(square, zBottom, h, r), r))
+                << "r " << r << ", zBottom " << zBottom;
+        }
+    }
     expectError([&]{ floeCore(square, 0, 1.0, 0.0); }, "radius");
     expectError([&]{ floeCore(square, 0, 1.0, -0.1); }, "radius");
 

@@ -63,7 +63,7 @@ Usage
     //             min 0.6; max 1.4; maxDraws 1000; }  (truncated normal:
     //             redrawn until in [min, max], at most maxDraws times)
     radius          0.05;           // required: dilation radius r > 0;
-                                    // thickness (or min) must exceed 2r
+                                    // thickness (or min) must exceed 4r
     seed            1;              // [1] random seed (>= 0): same seed, same field
     lloydIterations 0;              // [0] Lloyd relaxation steps (more regular)
     floeNumbering   hilbert;        // [hilbert] floes numbered along a Hilbert
@@ -113,7 +113,7 @@ Usage
     \endverbatim
 
     Bad input stops with a FatalIOError naming the file and the entry:
-    concentration outside (0, 1], thickness <= 2r, region too small for one
+    concentration outside (0, 1], thickness <= 4r, region too small for one
     floe, exclusion zones covering the region or overlapping each other,
     negative densities, unknown thickness distribution or zone type.
 

@@ -507,6 +507,26 @@ std::vector<Vec2> shrinkConvexPolygon
 }
 
 
+bool thickEnough(double thickness, double radius, double tolerance)
+{
+    // Above 4r by the relative tolerance: the core's height h - 2r, once
+    // its ends are placed at zBottom + r and zBottom + h - r, is rounded
+    return
+        std::isfinite(thickness)
+     && thickness > minThicknessInRadii*radius*(1 + tolerance);
+}
+
+
+std::string thinFloeText(double radius)
+{
+    return
+        " must be more than four times the dilation radius (4r = "
+      + str(minThicknessInRadii*radius) + "): the core, h - 2r thick, must be"
+        " at least 2r thick, as a dilated element's radius is at most half"
+        " its core's thinnest width";
+}
+
+
 ConvexPolyhedron floeCore
 (
     const std::vector<Vec2>& outline,
@@ -523,13 +543,11 @@ ConvexPolyhedron floeCore
             "dilation radius must be > 0, got " + str(radius), "radius"
         );
     }
-    if (!std::isfinite(thickness) || !(thickness > 2*radius))
+    if (!thickEnough(thickness, radius, tolerance))
     {
         throw Error
         (
-            "floe thickness " + str(thickness)
-          + " must be larger than twice the dilation radius (2r = "
-          + str(2*radius) + ")",
+            "floe thickness " + str(thickness) + thinFloeText(radius),
             "thickness"
         );
     }

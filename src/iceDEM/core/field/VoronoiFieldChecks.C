@@ -159,7 +159,7 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
         throw Error("velocity must be finite", "velocity");
     }
 
-    checkThickness(s.thickness, s.radius);
+    checkThickness(s.thickness, s.radius, s.tolerance);
 
     // Size: the tessellation rectangle and a mean cell must hold a core
     {

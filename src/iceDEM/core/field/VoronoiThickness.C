@@ -81,25 +81,28 @@ double voronoiDetail::drawThickness(const ThicknessSettings& t, FieldRandom& rng
 }
 
 
-void voronoiDetail::checkThickness(const ThicknessSettings& t, double radius)
+void voronoiDetail::checkThickness
+(
+    const ThicknessSettings& t,
+    double radius,
+    double tolerance
+)
 {
     auto finite = [](double x) { return std::isfinite(x); };
 
     using D = ThicknessSettings::Distribution;
-    const double h2r = 2*radius;
-    const std::string tooThin =
-        " must be larger than twice the dilation radius (2r = "
-      + str(h2r) + ")";
+    // As floeCore
+    const std::string tooThin = thinFloeText(radius);
     if (t.distribution == D::constant)
     {
-        if (!(t.value > h2r) || !finite(t.value))
+        if (!thickEnough(t.value, radius, tolerance))
         {
             throw Error("thickness " + str(t.value) + tooThin, "thickness");
         }
     }
     else
     {
-        if (!(t.min > h2r) || !finite(t.min))
+        if (!thickEnough(t.min, radius, tolerance))
         {
             throw Error
             (
