@@ -615,6 +615,23 @@ TEST(periodic, voronoiFieldWithAZoneAtHighConcentrationDoesNotTouch)
     }
     w.setDomain(periodicBox(-75, 75, -75, 75));
     EXPECT_NO_THROW(w.initialise());
+
+    // At 99 % with many corrections: each goes half-way to the bound, and
+    // the tessellation concentration used to end a rounding below 1 (the
+    // same touching floes); it now ends at the gaps the tolerance keeps
+    s.concentration = 0.99;
+    s.maxCorrections = 100;
+    const std::vector<Floe> dense = generateVoronoiField(s, rep);
+    EXPECT_GT(rep.corrections, 20);
+    EXPECT_LE(rep.tessellationConcentration, maxFieldConcentration(s.tolerance));
+    World wd(noGravity());
+    const int md = wd.addMaterial(ice());
+    for (const Floe& f : dense)
+    {
+        wd.addBody(wd.addShape(DilatedShape(f.core(), f.radius)), md, Vec3::Zero());
+    }
+    wd.setDomain(periodicBox(-75, 75, -75, 75));
+    EXPECT_NO_THROW(wd.initialise());
 }
 
 
@@ -1003,7 +1020,8 @@ TEST(inflowOutflow, sameSeedSameRunAndBadConcentration)
     expectSameState(*a, *b);
 
     InflowOutflowSettings s;
-    for (const double c : {0.0, -0.1, 1.2})
+    // 1 and just below it by rounding: the strips' floes would touch
+    for (const double c : {0.0, -0.1, 1.2, 1.0, std::nextafter(1.0, 0.0)})
     {
         s.field.concentration = c;
         try

@@ -640,6 +640,14 @@ TEST(VoronoiField, BadInputNamesTheEntry)
     s = baseSettings(0.0);  expectError([&]{ gen(s); }, "concentration");
     s = baseSettings(1.2);  expectError([&]{ gen(s); }, "concentration");
     s = baseSettings(-0.5); expectError([&]{ gen(s); }, "concentration");
+    // At 1 (or below it by less than the tolerance) the floes tile the
+    // region and touch their neighbours, which the DEM refuses at the start
+    s = baseSettings(1.0);  expectError([&]{ gen(s); }, "concentration");
+    s = baseSettings(1 - 1e-12);  expectError([&]{ gen(s); }, "concentration");
+    // Thinner than 2r in the plane: no element
+    s = baseSettings(0.5);
+    s.minCoreWidthRatio = 1.9;
+    expectError([&]{ gen(s); }, "minCoreWidthRatio");
 
     s = baseSettings(0.5);
     s.thickness.value = 0.1;

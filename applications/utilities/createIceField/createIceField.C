@@ -56,7 +56,7 @@ Usage
                                     // removing those in exclusion zones), or
     meanFloeArea    150;            // [m2] instead: nFloes = round(c l w / A)
                                     // (exactly one of the two)
-    concentration   0.6;            // required, in (0, 1]: floe area / free area
+    concentration   0.6;            // required, in (0, 1): floe area / free area
     thickness       1.0;            // required: a value [m], or a distribution:
     // thickness { distribution uniform; min 0.8; max 1.2; }
     // thickness { distribution normal; mean 1; standardDeviation 0.2;
@@ -85,7 +85,7 @@ Usage
 
     minCoreEdgeRatio     1;         // [1] edges whose core edge would be
                                     // shorter than this times r are collapsed
-    minCoreWidthRatio    2;         // [2] cells whose core is thinner than
+    minCoreWidthRatio    2;         // [2] (>= 2) cells whose core is thinner than
                                     // this times r are dropped (too small)
     correctConcentration yes;       // [yes] correct for the floes removed at
                                     // exclusion zones and small cells
@@ -113,9 +113,10 @@ Usage
     \endverbatim
 
     Bad input stops with a FatalIOError naming the file and the entry:
-    concentration outside (0, 1], thickness <= 4r, region too small for one
-    floe, exclusion zones covering the region or overlapping each other,
-    negative densities, unknown thickness distribution or zone type.
+    concentration outside (0, 1), thickness <= 4r, minCoreWidthRatio < 2,
+    region too small for one floe, exclusion zones covering the region or
+    overlapping each other, negative densities, unknown thickness
+    distribution or zone type.
 
 SourceFiles
     createIceField.C

@@ -36,9 +36,23 @@ InflowOutflow::InflowOutflow(const InflowOutflowSettings& s)
     {
         throw Error("the update interval must be > 0", "interval");
     }
-    if (!(s.field.concentration > 0 && s.field.concentration <= 1))
+    if (!(s.field.tolerance > 0 && s.field.tolerance < 1))
     {
-        throw Error("the inflow concentration must be in (0, 1]", "concentration");
+        throw Error("the inflow generator's tolerance must be in (0, 1)", "tolerance");
+    }
+    if
+    (
+        !(
+            s.field.concentration > 0
+         && s.field.concentration <= maxFieldConcentration(s.field.tolerance)
+        )
+    )
+    {
+        throw Error
+        (
+            "the inflow " + concentrationRangeText(s.field.concentration, s.field.tolerance),
+            "concentration"
+        );
     }
     if (std::isnan(settings_.windowLo))
     {

@@ -270,6 +270,7 @@ std::vector<Floe> generateVoronoiField
     VoronoiFieldReport bestReport;
     double bestErr = std::numeric_limits<double>::infinity();
 
+    const double cMax = maxFieldConcentration(s.tolerance);
     double ct = c;
     for (int iter = 0; ; ++iter)
     {
@@ -296,15 +297,16 @@ std::vector<Floe> generateVoronoiField
         }
         // c_t stays below 1: at 1 the cells tile the tessellation rectangle
         // and step 5 moves nothing, so neighbours share their edges and the
-        // DEM refuses the touching floes. A correction that would reach 1
-        // goes half-way to 1 instead: every field keeps its gaps (of about
-        // (1 - c_t)/2 of a floe's distance from its neighbour).
+        // DEM refuses the touching floes. A correction that would pass
+        // cMax (gaps above the tolerance) goes half-way to it instead:
+        // every field keeps its gaps (of about (1 - c_t)/2 of a floe's
+        // distance from its neighbour).
         double next = roundTo(ct*c/rep.concentration, s.concentrationResolution);
-        if (next >= 1)
+        if (next > cMax)
         {
-            next = 0.5*(ct + 1);
+            next = 0.5*(ct + cMax);
         }
-        if (next == ct || next >= 1)
+        if (next == ct || next > cMax)
         {
             break;
         }

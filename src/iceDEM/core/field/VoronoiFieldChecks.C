@@ -69,11 +69,16 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
             "region"
         );
     }
-    if (!(s.concentration > 0 && s.concentration <= 1))
+    // Before the concentration, whose bound it sets
+    if (!(s.tolerance > 0 && s.tolerance < 1))
+    {
+        throw Error("tolerance must be in (0, 1)", "tolerance");
+    }
+    if (!(s.concentration > 0 && s.concentration <= maxFieldConcentration(s.tolerance)))
     {
         throw Error
         (
-            "concentration must be in (0, 1], got " + str(s.concentration),
+            concentrationRangeText(s.concentration, s.tolerance),
             "concentration"
         );
     }
@@ -98,9 +103,17 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
     {
         throw Error("minCoreEdgeRatio must be >= 0", "minCoreEdgeRatio");
     }
-    if (!(s.minCoreWidthRatio >= 0) || !finite(s.minCoreWidthRatio))
+    // A thinner core is no dilated element: a floe kept with it would stop
+    // the field (checkCores) or the solver reading it
+    if (!(s.minCoreWidthRatio >= minCoreWidthInRadii) || !finite(s.minCoreWidthRatio))
     {
-        throw Error("minCoreWidthRatio must be >= 0", "minCoreWidthRatio");
+        throw Error
+        (
+            "minCoreWidthRatio must be >= " + str(minCoreWidthInRadii) + ", got "
+          + str(s.minCoreWidthRatio) + ": a dilated element's radius is at most"
+            " half its core's thinnest width",
+            "minCoreWidthRatio"
+        );
     }
     if (s.maxCorrections < 0)
     {
@@ -120,10 +133,6 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
             "concentrationResolution must be in (0, 1)",
             "concentrationResolution"
         );
-    }
-    if (!(s.tolerance > 0 && s.tolerance < 1))
-    {
-        throw Error("tolerance must be in (0, 1)", "tolerance");
     }
     if (!(s.iceDensity > 0) || !finite(s.iceDensity))
     {
@@ -196,6 +205,23 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
     }
 
     checkExclusionZones(s);
+}
+
+
+double maxFieldConcentration(double tolerance)
+{
+    return 1/((1 + tolerance)*(1 + tolerance));
+}
+
+
+std::string concentrationRangeText(double concentration, double tolerance)
+{
+    return
+        "concentration must be in (0, 1), got " + str(concentration)
+      + ": at 1 the floes tile the region and touch their neighbours, which"
+        " the DEM does not allow at the start (the largest is 1/(1 +"
+        " tolerance)^2, 1 - " + str(1 - maxFieldConcentration(tolerance))
+      + " at the tolerance " + str(tolerance) + ")";
 }
 
 

@@ -228,15 +228,17 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
 
     ::iceDEM::VoronoiFieldSettings& f = s.field;
 
-    // Concentration in (0, 1]
+    // Concentration in (0, 1), below 1 by the gaps the floes keep
+    // (VoronoiField.H: maxFieldConcentration)
     {
         const dictionary& src = source(d, fd, "concentration");
         const scalar c = finite(src, "concentration");
-        if (!(c > 0 && c <= 1))
+        if (!(c > 0 && c <= ::iceDEM::maxFieldConcentration(f.tolerance)))
         {
             FatalIOErrorInFunction(src)
-                << "Entry 'concentration' (inflow of 'domain'): must be in"
-                << " (0, 1]; got " << c << nl << exit(FatalIOError);
+                << "Entry 'concentration' (inflow of 'domain'): "
+                << ::iceDEM::concentrationRangeText(c, f.tolerance).c_str()
+                << nl << exit(FatalIOError);
         }
         f.concentration = c;
     }
