@@ -175,7 +175,57 @@ Foam::completeTime::status Foam::completeTime::statusOf
 }
 
 
+namespace
+{
+
+// OpenFOAM starts from the value of the time directory's name (1 for "1"),
+// not from the value in its uniform/time, which the run that wrote it had
+// summed step by step (1.0000000000000004): the restarted run's times would
+// then differ from the uninterrupted run's by rounding, and with them
+// whatever depends on the time (a wind table: 2e-13 m apart after 1 s). The
+// summed value is taken back when it names the same time.
+void restoreSummedTime(Foam::Time& runTime)
+{
+    using namespace Foam;
+    const fileName file(runTime.timePath()/"uniform"/"time");
+    if (!isFile(file, false))
+    {
+        return;     // initial conditions, or a case start without a directory
+    }
+    IFstream is(file);
+    if (!is.good())
+    {
+        return;
+    }
+    const dictionary d(is);
+    scalar summed = 0;
+    if
+    (
+        d.readIfPresent("value", summed)
+     && std::isfinite(summed)
+     && summed != runTime.value()
+     && Time::timeName(runTime.timeToUserTime(summed)) == runTime.timeName()
+    )
+    {
+        runTime.setTime(summed, runTime.timeIndex());
+    }
+}
+
+} // anonymous namespace
+
+
 Foam::autoPtr<Foam::Time> Foam::completeTime::createTime
+(
+    const argList& args
+)
+{
+    autoPtr<Time> runTime(createTimeFromComplete(args));
+    restoreSummedTime(*runTime);
+    return runTime;
+}
+
+
+Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
 (
     const argList& args
 )
