@@ -105,11 +105,12 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
     }
     // A thinner core is no dilated element: a floe kept with it would stop
     // the field (checkCores) or the solver reading it
-    if (!(s.minCoreWidthRatio >= minCoreWidthInRadii) || !finite(s.minCoreWidthRatio))
+    const double leastWidth = DilatedShape::minCoreWidthInRadii;
+    if (!(s.minCoreWidthRatio >= leastWidth) || !finite(s.minCoreWidthRatio))
     {
         throw Error
         (
-            "minCoreWidthRatio must be >= " + str(minCoreWidthInRadii) + ", got "
+            "minCoreWidthRatio must be >= " + str(leastWidth) + ", got "
           + str(s.minCoreWidthRatio) + ": a dilated element's radius is at most"
             " half its core's thinnest width",
             "minCoreWidthRatio"

@@ -97,11 +97,11 @@ DilatedShape::DilatedShape
     massModel_(massModel)
 {
     const double width = coreInput.minWidth();
-    if (!(radius > 0) || !(radius <= 0.5*width))
+    if (!(radius > 0) || !(radius*minCoreWidthInRadii <= width))
     {
         std::ostringstream msg;
         msg << "dilation radius " << radius << " must be > 0 and at most half"
-            << " the thinnest width of the core (" << 0.5*width << ")";
+            << " the thinnest width of the core (" << width/minCoreWidthInRadii << ")";
         throw Error(msg.str(), "radius");
     }
 

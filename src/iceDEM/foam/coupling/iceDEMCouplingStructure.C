@@ -229,14 +229,18 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
         const ::iceDEM::ConvexPolyhedron piece =
             coreCall(sd, what, [&]{ return ::iceDEM::ConvexPolyhedron::hull(v); });
 
+        // The core, the piece shrunk by r, at least minCoreWidthInRadii r
+        // thin (strictly: the shrink rounds)
         const scalar width = piece.minWidth();
-        if (!(2*r < width))
+        const scalar inRadii = 2 + ::iceDEM::DilatedShape::minCoreWidthInRadii;
+        if (!(inRadii*r < width))
         {
             FatalIOErrorInFunction(sd)
                 << "Entry 'radius' " << r << ": " << what.c_str()
                 << " is " << width << " m thin at its thinnest; the radius"
-                << " must be below half of that (the DEM core is the piece"
-                << " shrunk by the radius)" << nl
+                << " must be below 1/" << inRadii << " of that (the DEM core"
+                << " is the piece shrunk by the radius, and a dilated body's"
+                << " radius is at most half its core's thinnest width)" << nl
                 << exit(FatalIOError);
         }
 
