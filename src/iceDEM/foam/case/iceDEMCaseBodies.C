@@ -141,14 +141,20 @@ void Foam::iceDEMCase::readBodies()
 
         if (type == "box")
         {
+            // The core (halfExtents - r) at least minCoreWidthInRadii r
+            // wide: every half extent at least 2 r (exact: h - r is)
             const vector h = d.get<vector>("halfExtents");
-            if (!(cmptMin(h) > r))
+            const scalar least =
+                (1 + 0.5*::iceDEM::DilatedShape::minCoreWidthInRadii)*r;
+            if (!(cmptMin(h) >= least))
             {
                 FatalIOErrorInFunction(d)
                     << "Entry 'halfExtents' " << h << " of " << what.c_str()
                     << ": every half extent (of the dilated box) must be"
-                    << " larger than the radius " << r
-                    << " (core half extents = halfExtents - radius)" << nl
+                    << " at least twice the radius " << r
+                    << " (core half extents = halfExtents - radius, and a"
+                    << " dilated body's radius is at most half its core's"
+                    << " thinnest width)" << nl
                     << exit(FatalIOError);
             }
             core = coreCall
