@@ -267,7 +267,7 @@ TEST(IceFloe, BadInputNamesTheEntry)
     // Above 4r by the tolerance, every floe's core is a valid element
     for (const double r : {0.01, 0.03, 0.05, 0.1, 0.13, 0.25})
     {
-        const double h = minThicknessInRadii*r*(1 + 2*defaultFloeTolerance);
+        const double h = DilatedShape::minOuterWidthInRadii*r*(1 + 2*defaultFloeTolerance);
         for (const double zBottom : {0.0, -0.9*h, -703.1})
         {
             EXPECT_NO_THROW(DilatedShape(floeCore(square, zBottom, h, r), r))

@@ -40,13 +40,7 @@ InflowOutflow::InflowOutflow(const InflowOutflowSettings& s)
     {
         throw Error("the inflow generator's tolerance must be in (0, 1)", "tolerance");
     }
-    if
-    (
-        !(
-            s.field.concentration > 0
-         && s.field.concentration <= maxFieldConcentration(s.field.tolerance)
-        )
-    )
+    if (!fieldConcentrationAllowed(s.field.concentration, s.field.tolerance))
     {
         throw Error
         (

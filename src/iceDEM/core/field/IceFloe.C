@@ -513,7 +513,7 @@ bool thickEnough(double thickness, double radius, double tolerance)
     // its ends are placed at zBottom + r and zBottom + h - r, is rounded
     return
         std::isfinite(thickness)
-     && thickness > minThicknessInRadii*radius*(1 + tolerance);
+     && thickness > DilatedShape::minOuterWidthInRadii*radius*(1 + tolerance);
 }
 
 
@@ -521,7 +521,7 @@ std::string thinFloeText(double radius)
 {
     return
         " must be more than four times the dilation radius (4r = "
-      + str(minThicknessInRadii*radius) + "): the core, h - 2r thick, must be"
+      + str(DilatedShape::minOuterWidthInRadii*radius) + "): the core, h - 2r thick, must be"
         " at least 2r thick, as a dilated element's radius is at most half"
         " its core's thinnest width";
 }

@@ -74,7 +74,7 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
     {
         throw Error("tolerance must be in (0, 1)", "tolerance");
     }
-    if (!(s.concentration > 0 && s.concentration <= maxFieldConcentration(s.tolerance)))
+    if (!fieldConcentrationAllowed(s.concentration, s.tolerance))
     {
         throw Error
         (
@@ -212,6 +212,12 @@ void checkVoronoiFieldSettings(const VoronoiFieldSettings& s)
 double maxFieldConcentration(double tolerance)
 {
     return 1/((1 + tolerance)*(1 + tolerance));
+}
+
+
+bool fieldConcentrationAllowed(double concentration, double tolerance)
+{
+    return concentration > 0 && concentration <= maxFieldConcentration(tolerance);
 }
 
 

@@ -141,12 +141,13 @@ void Foam::iceDEMCase::readBodies()
 
         if (type == "box")
         {
-            // The core (halfExtents - r) at least minCoreWidthInRadii r
-            // wide: every half extent at least 2 r (exact: h - r is)
+            // The box (2 halfExtents) at least minOuterWidthInRadii r wide:
+            // every half extent at least 2 r (exact: h - r is)
             const vector h = d.get<vector>("halfExtents");
-            const scalar least =
-                (1 + 0.5*::iceDEM::DilatedShape::minCoreWidthInRadii)*r;
-            if (!(cmptMin(h) >= least))
+            if
+            (
+                !(2*cmptMin(h) >= ::iceDEM::DilatedShape::minOuterWidthInRadii*r)
+            )
             {
                 FatalIOErrorInFunction(d)
                     << "Entry 'halfExtents' " << h << " of " << what.c_str()

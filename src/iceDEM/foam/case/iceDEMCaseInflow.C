@@ -233,7 +233,7 @@ void Foam::iceDEMCase::readInflowOutflow(const dictionary& d)
     {
         const dictionary& src = source(d, fd, "concentration");
         const scalar c = finite(src, "concentration");
-        if (!(c > 0 && c <= ::iceDEM::maxFieldConcentration(f.tolerance)))
+        if (!::iceDEM::fieldConcentrationAllowed(c, f.tolerance))
         {
             FatalIOErrorInFunction(src)
                 << "Entry 'concentration' (inflow of 'domain'): "

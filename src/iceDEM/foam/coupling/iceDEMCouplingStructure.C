@@ -229,10 +229,10 @@ void Foam::iceDEMCoupling::addStructure(const dictionary& sd)
         const ::iceDEM::ConvexPolyhedron piece =
             coreCall(sd, what, [&]{ return ::iceDEM::ConvexPolyhedron::hull(v); });
 
-        // The core, the piece shrunk by r, at least minCoreWidthInRadii r
-        // thin (strictly: the shrink rounds)
+        // The piece at least minOuterWidthInRadii r thin, so its core (the
+        // piece shrunk by r) is an element (strictly: the shrink rounds)
         const scalar width = piece.minWidth();
-        const scalar inRadii = 2 + ::iceDEM::DilatedShape::minCoreWidthInRadii;
+        const scalar inRadii = ::iceDEM::DilatedShape::minOuterWidthInRadii;
         if (!(inRadii*r < width))
         {
             FatalIOErrorInFunction(sd)

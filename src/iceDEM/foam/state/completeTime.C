@@ -175,6 +175,16 @@ Foam::completeTime::status Foam::completeTime::statusOf
 }
 
 
+namespace Foam
+{
+namespace completeTime
+{
+    //- createTime at the value of the directory's name (OpenFOAM's)
+    static autoPtr<Time> createTimeFromComplete(const argList& args);
+}
+}
+
+
 namespace
 {
 
