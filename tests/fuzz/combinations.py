@@ -19,6 +19,16 @@ can be made again.
       states at 2 s must be identical (the 'step' line excepted)
   combinations.py structure N [FIRST]  random facetedHull profiles run on by
       iceFloatingFoam -noFlow
+  combinations.py coupled N [FIRST]    random iceFloatingFoam settings with
+      the flow on a coarse mesh of tutorials/iceFloatingFoam/floeApproach
+      (a few floes, resolved or empirical drag, sampling, interpolation,
+      two-way, wind, floe damping, bodyForceInterval, periodic DEM domain,
+      the flow every 1-3 steps, outer correctors, correctPhi;
+      the box hull fixed, free on sixDoFRigidBodyMotion or on the rigid
+      lid, with hydrostatics, a spread mooring and wind on it), 2 s, run
+      with 1 and 2 threads and restarted at 1 s (binary writes): the DEM
+      state, the structure's state, the flow's U and the ice load from 1 s
+      on must be identical
 
 Every run must end with exit 0 or with a FOAM FATAL (IO) ERROR, within a
 time bound, without NaN in the log. Cases that do not are printed and
@@ -218,6 +228,34 @@ def fieldCase(i):
     return case, kind, note
 
 
+def invariantRuns(case, app, setEnd, results):
+    """Run case with 1 thread to 2 s, a copy with 2 threads, and a copy
+    stopped at 1 s and restarted (setEnd(copy, endTime, startFrom) edits its
+    controlDict); results(case) of the three must agree. Returns (kind,
+    note) and removes the copies when they agree"""
+    two, split = case + '_2threads', case + '_restart'
+    for c in (two, split):
+        shutil.rmtree(c, ignore_errors=True)
+        shutil.copytree(case, c)
+    one = dict(os.environ, OMP_NUM_THREADS='1')
+    rc, out = run([app], case, one)
+    kind, note = outcome(rc, out), fatalText(out)
+    if kind != 'ran':
+        return kind, note
+    run([app], two, dict(os.environ, OMP_NUM_THREADS='2'))
+    setEnd(split, 1, 'startTime')
+    run([app], split, one)
+    setEnd(split, 2, 'latestTime')
+    run([app], split, one)
+    found = [results(c) for c in (case, two, split)]
+    if found[0] is None or (isinstance(found[0], tuple) and None in found[0]) \
+            or len(set(found)) != 1:
+        return 'INVARIANT', '1 thread %s, 2 threads %s, restarted %s' % tuple(found)
+    for c in (two, split):
+        shutil.rmtree(c, ignore_errors=True)
+    return 'ran, 1 = 2 threads = restart', ''
+
+
 def demCaseRun(i):
     rng = random.Random(i)
     case = newCase('dem%d' % i)
@@ -230,26 +268,10 @@ def demCaseRun(i):
     rc, out = run(['createIceField'], case)
     if rc != 0:
         return case, 'field ' + outcome(rc, out), fatalText(out)
-    two, split = case + '_2threads', case + '_restart'
-    for c in (two, split):
-        shutil.rmtree(c, ignore_errors=True)
-        shutil.copytree(case, c)
-    one = dict(os.environ, OMP_NUM_THREADS='1')
-    rc, out = run(['iceDEMFoam'], case, one)
-    kind, note = outcome(rc, out), fatalText(out)
-    if kind != 'ran':
-        return case, kind, note
-    run(['iceDEMFoam'], two, dict(os.environ, OMP_NUM_THREADS='2'))
-    demCase(split, 1, 1)
-    run(['iceDEMFoam'], split, one)
-    demCase(split, 2, 1, 'latestTime')
-    run(['iceDEMFoam'], split, one)
-    states = [stateOf(c, '2') for c in (case, two, split)]
-    if states[0] is None or len(set(states)) != 1:
-        return case, 'INVARIANT', '1 thread %s, 2 threads %s, restarted %s' % tuple(states)
-    for c in (two, split):
-        shutil.rmtree(c, ignore_errors=True)
-    return case, 'ran, 1 = 2 threads = restart', ''
+    kind, note = invariantRuns(case, 'iceDEMFoam',
+                               lambda c, end, start: demCase(c, end, 1, start),
+                               lambda c: stateOf(c, '2'))
+    return case, kind, note
 
 
 def structureCase(i):
@@ -279,13 +301,197 @@ def structureCase(i):
     return case, kind, note
 
 
+COUPLED_TUTORIAL = os.path.join(ROOT, 'tutorials', 'iceFloatingFoam', 'floeApproach')
+
+
+def coupledBase():
+    """The tutorial floeApproach on a coarse mesh (24 x 12 x 4 cells before
+    the hull is cut out), set up once per invocation"""
+    base = os.path.join(SCRATCH, 'coupledBase')
+    if os.path.exists(os.path.join(base, 'constant', 'polyMesh', 'owner')):
+        return base
+    shutil.rmtree(base, ignore_errors=True)
+    shutil.copytree(COUPLED_TUTORIAL, base)
+    for f in ('Allrun', 'Allclean'):
+        os.remove(os.path.join(base, f))
+    shutil.copytree(os.path.join(base, '0.orig'), os.path.join(base, '0'))
+    mesh = os.path.join(base, 'system', 'blockMeshDict')
+    text = open(mesh).read()
+    assert '(48 24 6)' in text
+    open(mesh, 'w').write(text.replace('(48 24 6)', '(24 12 4)'))
+    for cmd in (['createStructure'], ['blockMesh'], ['topoSet'],
+                ['subsetMesh', 'fluid', '-patch', 'hull', '-overwrite']):
+        rc, out = run(cmd, base)
+        if rc != 0:
+            sys.exit('the coupled base does not set up (%s):\n%s' % (cmd[0], out[-2000:]))
+    for d in ('constant/polyMesh/sets', '0/cellLevel', '0/pointLevel'):
+        p = os.path.join(base, d)
+        shutil.rmtree(p) if os.path.isdir(p) else (os.path.exists(p) and os.remove(p))
+    return base
+
+
+def coupledIceField(rng):
+    """1 to 10 prisms on a grid of cells upstream of and beside the hull
+    (the box [-1, 1] x [-1, 1]); 25 cm floes, the hull's 2 cm radius"""
+    h = rng.choice([0.15, 0.25, 0.4])
+    cells = [(x, y) for x in (-5.2, -4.2, -3.2, -2.2) for y in (-2.2, -1.1, 0.0, 1.1, 2.2)]
+    cells += [(x, y) for x in (-0.6, 0.6, 1.8, 3.0) for y in (-2.2, 2.2)]
+    rng.shuffle(cells)
+    bodies = []
+    for k, (x, y) in enumerate(cells[:rng.randint(1, 10)]):
+        n = rng.choice([3, 4, 5, 6])
+        a0, R = rng.uniform(0, 2*math.pi), rng.uniform(0.2, 0.45)
+        outline = ' '.join('(%r %r)' % (x + R*math.cos(a0 + 2*math.pi*j/n),
+                                         y + R*math.sin(a0 + 2*math.pi*j/n)) for j in range(n))
+        bodies.append('floe%d { type prism; outline (%s); zBottom %r; thickness %r; '
+                      'radius 0.02; material ice; velocity (%r %r 0); }'
+                      % (k, outline, -h*900/1025*rng.uniform(0.8, 1.2), h,
+                         rng.uniform(0, 0.6), rng.uniform(-0.2, 0.2)))
+    return ('FoamFile { version 2.0; format ascii; class dictionary; object iceField; }\n'
+            'bodies\n{\n    %s\n}\n' % '\n    '.join(bodies))
+
+
+def coupledProperties(rng, base):
+    p = open(os.path.join(base, 'constant', 'iceDEMProperties')).read()
+    p = re.sub(r'\ndrag\s*\{[^{}]*\}', '\n', p)
+    p = re.sub(r'\noutput\s*\{[^{}]*\}', '\n', p)
+    p = re.sub(r'\ndeltaT\s+[^;]+;', '\ndeltaT %g;' % rng.choice([2.5e-4, 5e-4, 5e-4, 1e-3]), p)
+    p = p.replace('iceSteel {', 'iceIce { materials (ice ice); friction 0.2; restitution 0.3; }\n'
+                  '    iceSteel {')
+    u = rng.choice([0, 0.1, 0.3, 0.6])
+    if rng.random() < 0.7:
+        drag = ('drag { type resolved; U U; current (%g 0 0); sampling %s; interpolation %s; '
+                'twoWay %s; subdivision %d; }'
+                % (u, rng.choice(['flowStep', 'demStep']), rng.choice(['cellGradient', 'cellPoint']),
+                   rng.choice(['true', 'false']), rng.randint(0, 2)))
+    else:
+        drag = 'drag { type empirical; current (%g 0 0); subdivision %d; }' % (u, rng.randint(0, 2))
+    add = [drag]
+    if rng.random() < 0.5:
+        a, w = rng.uniform(0, 2*math.pi), rng.choice([5, 15, 30])
+        add.append('wind { type uniform; velocity (%g %g 0); }' % (w*math.cos(a), w*math.sin(a)))
+    if rng.random() < 0.3:
+        add.append('floeDamping { heave %g; rollPitch %g; }'
+                   % (rng.choice([0, 0.1, 1]), rng.choice([0, 0.1, 1])))
+    add.append('bodyForceInterval %d;' % rng.choice([1, 1, 2, 3]))
+    if rng.random() < 0.25:
+        add.append('domain { type periodic; x (-6 6); }')
+    add.append('output { precision 12; vtk false; }')
+    return p + '\n' + '\n'.join(add) + '\n'
+
+
+def coupledMotion(rng):
+    """The hull fixed (the tutorial), free on sixDoFRigidBodyMotion or free
+    on the rigid lid, with a random set of restraints"""
+    motion = rng.choice(['fixed', 'sixDoF', 'rigidLid'])
+    restraints = ['ice { sixDoFRigidBodyMotionRestraint iceLoad; }']
+    constraints = ''
+    if motion == 'fixed':
+        constraints = ('fixedPoint { sixDoFRigidBodyMotionConstraint point; } '
+                       'fixedOrientation { sixDoFRigidBodyMotionConstraint orientation; }')
+        solver = 'symplectic'
+    else:
+        solver = ('rigidLidSymplectic; heave { addedMass %g; linearDamping %g; } '
+                  'roll { addedMass %g; linearDamping %g; } pitch { addedMass %g; linearDamping %g; }'
+                  % tuple(rng.choice([0, 1, 100]) for _ in range(6)))
+        restraints.append('hydrostatics { sixDoFRigidBodyMotionRestraint hullHydrostatics; }')
+        if motion == 'sixDoF' and rng.random() < 0.7:
+            # held in the plane (the stock solver under the lid must be)
+            constraints = ('horizontal { sixDoFRigidBodyMotionConstraint plane; normal (0 0 1); } '
+                           'yawOnly { sixDoFRigidBodyMotionConstraint axis; axis (0 0 1); }')
+        if rng.random() < 0.7:
+            restraints.append(
+                'mooring { sixDoFRigidBodyMotionRestraint spreadMooring; spread { nLines %d; '
+                'startAngle %g; anchorRadius %g; anchorZ %g; fairleadRadius 1; fairleadZ -0.25; '
+                'stiffness %g; damping %g; pretension %g; } }'
+                % (rng.choice([3, 4, 8, 12]), rng.uniform(0, 90), rng.uniform(3, 30),
+                   rng.uniform(-1.5, 0), rng.choice([1e2, 1e3, 1e4, 1e5]),
+                   rng.choice([0, 10, 1e3]), rng.choice([0, 10, 200])))
+        if rng.random() < 0.5:
+            restraints.append(
+                'wind { sixDoFRigidBodyMotionRestraint windLoad; type uniform; velocity (%g %g 0); '
+                'rhoAir 1.3; Cd 1; area 2; centreOfPressure (0 0 0.5); }'
+                % (rng.uniform(-20, 20), rng.uniform(-20, 20)))
+    name = 'rigidLidSixDoFRigidBodyMotion' if motion == 'rigidLid' else 'sixDoFRigidBodyMotion'
+    return motion, (
+        'FoamFile { version 2.0; format ascii; class dictionary; object dynamicMeshDict; }\n'
+        'dynamicFvMesh dynamicMotionSolverFvMesh;\nmotionSolverLibs (sixDoFRigidBodyMotion);\n'
+        'motionSolver %s;\n%sCoeffs\n{\n    patches (hull);\n    innerDistance 0.3;\n'
+        '    outerDistance 1.0;\n    #include "hullMassProperties"\n    rho rhoInf;\n'
+        '    rhoInf 1025;\n    report off;\n    solver { type %s; }\n'
+        '    constraints { %s }\n    restraints { %s }\n}\n'
+        % (name, name, solver, constraints, ' '.join(restraints)))
+
+
+def coupledControl(case, endTime, startFrom, flowStep):
+    c = open(os.path.join(COUPLED_TUTORIAL, 'system', 'controlDict')).read()
+    for key, value in (('endTime', endTime), ('deltaT', flowStep), ('writeInterval', 1),
+                       ('startFrom', startFrom), ('writeFormat', 'binary')):
+        c = re.sub(r'\n%s\s+[^;]+;' % key, '\n%-16s%s;' % (key, value), c)
+    open(os.path.join(case, 'system', 'controlDict'), 'w').write(c)
+
+
+def coupledPimple(rng, case):
+    """PIMPLE: the flow solved every 1-3 steps, 1-2 outer correctors, the
+    mesh moved in each of them or not, correctPhi on or off"""
+    p = os.path.join(case, 'system', 'fvSolution')
+    s = open(p).read()
+    entries = ('nOuterCorrectors %d; moveMeshOuterCorrectors %s; flowSolveInterval %d; '
+               'correctPhi %s;' % (rng.choice([1, 1, 2]), rng.choice(['no', 'no', 'yes']),
+                                  rng.choice([1, 1, 2, 3]), rng.choice(['yes', 'yes', 'no'])))
+    s = re.sub(r'\n\s*(nOuterCorrectors|correctPhi|moveMeshOuterCorrectors|flowSolveInterval)'
+               r'\s+[^;]+;', '', s)
+    s, n = re.subn(r'\nPIMPLE\s*\{', '\nPIMPLE\n{\n    ' + entries, s)
+    assert n == 1
+    open(p, 'w').write(s)
+
+
+def coupledResults(case):
+    """The states at 2 s (DEM without its 'step' line, the structure, U)
+    and the ice load's rows after 1 s"""
+    parts = [stateOf(case, '2')]
+    for f in ('2/uniform/sixDoFRigidBodyMotionState', '2/U'):
+        p = os.path.join(case, f)
+        parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
+                     if os.path.exists(p) else None)
+    rows = []
+    for d in ('0', '1'):
+        p = os.path.join(case, 'postProcessing', 'iceLoad', d, 'iceLoad.dat')
+        if os.path.exists(p):
+            rows += [l for l in open(p) if l.strip() and not l.startswith('#')
+                     and float(l.split()[0]) > 1 + 1e-9]
+    parts.append(hashlib.md5(''.join(rows).encode()).hexdigest()[:16] if rows else None)
+    return tuple(parts)
+
+
+def coupledCase(i):
+    rng = random.Random(i)
+    base = coupledBase()
+    case = os.path.join(SCRATCH, 'coupled%d' % i)
+    shutil.rmtree(case, ignore_errors=True)
+    shutil.copytree(base, case)
+    open(os.path.join(case, 'constant', 'iceField'), 'w').write(coupledIceField(rng))
+    open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
+        coupledProperties(rng, base))
+    motion, text = coupledMotion(rng)
+    open(os.path.join(case, 'constant', 'dynamicMeshDict'), 'w').write(text)
+    flowStep = rng.choice([0.05, 0.1, 0.2])
+    coupledControl(case, 2, 'startTime', flowStep)
+    coupledPimple(rng, case)
+    kind, note = invariantRuns(case, 'iceFloatingFoam',
+                               lambda c, end, start: coupledControl(c, end, start, flowStep),
+                               coupledResults)
+    return case, '%s (%s)' % (kind, motion), note
+
+
 def main():
-    if len(sys.argv) < 3 or sys.argv[1] not in ('field', 'dem', 'structure'):
+    if len(sys.argv) < 3 or sys.argv[1] not in ('field', 'dem', 'structure', 'coupled'):
         print(__doc__)
         sys.exit(1)
     what, n = sys.argv[1], int(sys.argv[2])
     first = int(sys.argv[3]) if len(sys.argv) > 3 else 0
-    one = {'field': fieldCase, 'dem': demCaseRun, 'structure': structureCase}[what]
+    one = {'field': fieldCase, 'dem': demCaseRun, 'structure': structureCase,
+           'coupled': coupledCase}[what]
     counts = {}
     for i in range(first, first + n):
         case, kind, note = one(i)

@@ -67,6 +67,7 @@ Usage
 #include "dynamicMotionSolverFvMesh.H"
 #include "sixDoFRigidBodyMotionSolver.H"
 #include "rigidLidMotionSolver.H"
+#include "stockMotionUnderLid.H"
 #include "singlePhaseTransportModel.H"
 #include "turbulentTransportModel.H"
 #include "pimpleControl.H"
@@ -79,6 +80,7 @@ Usage
 #include "runWithoutFlow.H"
 #include "completeTime.H"
 #include "completeTimeWriter.H"
+#include "flowSolverState.H"
 #include "dictionaryChecks.H"
 
 #include <memory>
@@ -164,13 +166,31 @@ int main(int argc, char *argv[])
     (void)g;    // registered for sixDoFRigidBodyMotion, which looks it up
     #include "createFields.H"
     #include "createUfIfPresent.H"
+    // The old-time levels the time loop keeps (its first change of U in a
+    // step, the boundary update after a mesh motion, stores them): made
+    // now from the fields read, or a restart would make them later, from
+    // fields already changed (restart = uninterrupted run)
+    U.oldTime();
+    if (Uf.valid())
+    {
+        Uf->oldTime();
+    }
     #include "CourantNo.H"
     #include "setInitialDeltaT.H"
 
     turbulence->validate();
 
+    // What the flow's solution depends on beyond the fields (a restart)
+    flowSolverState::read(runTime);
+
     const sixDoFRigidBodyMotion* hullPtr = structureMotionOf(mesh);
     motionSolver* meshMotion = meshMotionOf(mesh);
+    const auto* stockMotion =
+        dynamic_cast<const sixDoFRigidBodyMotionSolver*>(meshMotion);
+    if (stockMotion)
+    {
+        checkStockMotionUnderLid(*stockMotion);
+    }
     if (!hullPtr)
     {
         WarningInFunction
@@ -307,7 +327,19 @@ int main(int argc, char *argv[])
             motionLog->write(*hullPtr);
         }
 
-        writer.write();
+        // The stock motion solver writes its state at writePrecision: again
+        // with 17 digits after it (the rigid-lid solver writes 17 itself)
+        writer.write
+        (
+            [&runTime]() { flowSolverState::write(runTime); },
+            [&runTime, stockMotion]()
+            {
+                if (stockMotion)
+                {
+                    writeExactMotionState(runTime, stockMotion->motion());
+                }
+            }
+        );
 
         runTime.printExecutionTime(Info);
     }

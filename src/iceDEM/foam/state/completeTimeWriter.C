@@ -63,7 +63,8 @@ bool Foam::completeTimeWriter::terminateRequested()
 
 bool Foam::completeTimeWriter::write
 (
-    const std::function<void()>& writeOwn
+    const std::function<void()>& writeOwn,
+    const std::function<void()>& writeAfter
 )
 {
     bool stop = terminateRequested();
@@ -103,6 +104,10 @@ bool Foam::completeTimeWriter::write
     else
     {
         runTime_.write();
+    }
+    if (writeAfter)
+    {
+        writeAfter();
     }
 
     completeTime::testWriteDelay();

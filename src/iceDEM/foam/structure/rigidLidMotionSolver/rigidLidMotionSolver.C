@@ -10,6 +10,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "rigidLidMotionSolver.H"
+#include "structureMotion.H"
 #include "dictionaryChecks.H"
 #include "addToRunTimeSelectionTable.H"
 #include "uniformDimensionedFields.H"
@@ -282,21 +283,10 @@ bool Foam::rigidLidMotionSolver::writeObject
     const bool valid
 ) const
 {
-    IOdictionary dict
-    (
-        IOobject
-        (
-            "sixDoFRigidBodyMotionState",
-            mesh().time().timeName(),
-            "uniform",
-            mesh(),
-            IOobject::NO_READ,
-            IOobject::NO_WRITE,
-            false
-        )
-    );
-    motion_.state().write(dict);
-    return dict.regIOobject::write();
+    // 17 digits, not writePrecision: a restart continues the uninterrupted
+    // run to the bit
+    writeExactMotionState(mesh().time(), motion_);
+    return true;
 }
 
 

@@ -114,14 +114,24 @@ void Foam::structureMotion::step(const vector& force, const vector& moment)
 
 void Foam::structureMotion::write() const
 {
+    writeExactMotionState(runTime_, motion_());
+}
+
+
+void Foam::writeExactMotionState
+(
+    const Time& runTime,
+    const sixDoFRigidBodyMotion& motion
+)
+{
     IOdictionary state
     (
         IOobject
         (
             "sixDoFRigidBodyMotionState",
-            runTime_.timeName(),
+            runTime.timeName(),
             "uniform",
-            runTime_,
+            runTime,
             IOobject::NO_READ,
             IOobject::NO_WRITE,
             false
@@ -133,16 +143,23 @@ void Foam::structureMotion::write() const
     // doubles of the uninterrupted run
     const unsigned precision = IOstream::defaultPrecision();
     IOstream::defaultPrecision(17);
-    motion_->state().write(state);
+    motion.state().write(state);
     IOstream::defaultPrecision(precision);
-    completeTime::atomicWrite
+    if
     (
-        state,
-        runTime_.writeFormat(),
-        runTime_.writeVersion(),
-        runTime_.writeCompression(),
-        17
-    );
+        !completeTime::atomicWrite
+        (
+            state,
+            runTime.writeFormat(),
+            runTime.writeVersion(),
+            runTime.writeCompression(),
+            17
+        )
+    )
+    {
+        FatalErrorInFunction
+            << "Could not write " << state.objectPath() << exit(FatalError);
+    }
 }
 
 

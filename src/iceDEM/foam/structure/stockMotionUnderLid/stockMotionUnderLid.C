@@ -1,0 +1,130 @@
+/*---------------------------------------------------------------------------*\
+    iceDEM: dilated-polyhedron DEM for broken ice on floating structures.
+    Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
+
+    This program is free software: you can redistribute it and/or modify it
+    under the terms of the GNU General Public License as published by the
+    Free Software Foundation, either version 3 of the License, or (at your
+    option) any later version. See <http://www.gnu.org/licenses/>.
+\*---------------------------------------------------------------------------*/
+
+#include "stockMotionUnderLid.H"
+#include "sixDoFSolver.H"
+#include "mathematicalConstants.H"
+
+// * * * * * * * * * * * * * * * Local Classes * * * * * * * * * * * * * * * //
+
+namespace
+{
+
+using namespace Foam;
+
+//- The motion's constraint tensors (private to it; its integrators read
+//  them through sixDoFSolver's protected accessors). Never asked to solve
+class constraintTensors : public sixDoFSolver
+{
+public:
+
+    explicit constraintTensors(const sixDoFRigidBodyMotion& motion)
+    :
+        sixDoFSolver(dictionary(), const_cast<sixDoFRigidBodyMotion&>(motion))
+    {}
+
+    autoPtr<sixDoFSolver> clone() const override
+    {
+        return autoPtr<sixDoFSolver>(new constraintTensors(body_));
+    }
+
+    void solve(bool, const vector&, const vector&, scalar, scalar) override
+    {}
+
+    using sixDoFSolver::tConstraints;
+    using sixDoFSolver::rConstraints;
+};
+
+} // End anonymous namespace
+
+
+// * * * * * * * * * * * * * * * * Functions  * * * * * * * * * * * * * * * //
+
+void Foam::checkStockMotionUnderLid(const sixDoFRigidBodyMotionSolver& solver)
+{
+    const constraintTensors c(solver.motion());
+    const bool heave = mag(c.tConstraints() & vector(0, 0, 1)) > 0;
+    const bool roll = mag(c.rConstraints() & vector(1, 0, 0)) > 0;
+    const bool pitch = mag(c.rConstraints() & vector(0, 1, 0)) > 0;
+    if (!(heave || roll || pitch))
+    {
+        return;
+    }
+
+    FatalIOErrorInFunction(solver.coeffDict())
+        << "Entry 'constraints' of " << solver.coeffDict().name()
+        << " leaves the structure free in"
+        << (heave ? " heave" : "") << (roll ? " roll" : "")
+        << (pitch ? " pitch" : "") << "." << nl
+        << "With the flow, motionSolver sixDoFRigidBodyMotion moves the mesh"
+        << " near the structure with it; the rigid lid at the waterline"
+        << " cannot follow heave, roll or pitch (its cells fold and the run"
+        << " ends in a floating point exception)." << nl
+        << "Hold them with constraints, e.g." << nl
+        << "    constraints" << nl
+        << "    {" << nl
+        << "        horizontal { sixDoFRigidBodyMotionConstraint plane;"
+        << " normal (0 0 1); }" << nl
+        << "        yawOnly    { sixDoFRigidBodyMotionConstraint axis;"
+        << " axis (0 0 1); }" << nl
+        << "    }" << nl
+        << "or use motionSolver rigidLidSixDoFRigidBodyMotion (all six"
+        << " degrees of freedom, the mesh follows surge, sway and yaw), or"
+        << " run iceFloatingFoam -noFlow (the structure without fluid)."
+        << exit(FatalIOError);
+}
+
+
+void Foam::checkMorphedMesh
+(
+    const polyMesh& mesh,
+    const sixDoFRigidBodyMotionSolver& solver
+)
+{
+    // true: some face pyramid has a negative volume (reduced over ranks)
+    if (!mesh.checkFacePyramids(false))
+    {
+        return;
+    }
+
+    const sixDoFRigidBodyMotion& motion = solver.motion();
+    const dictionary& coeffs = solver.coeffDict();
+    const vector shift = motion.centreOfMass() - motion.initialCentreOfMass();
+    // The design orientation as the motion reads it (its own copy is private)
+    const tensor design
+    (
+        coeffs.getOrDefault<tensor>
+        (
+            "initialOrientation",
+            coeffs.getOrDefault<tensor>("orientation", tensor::I)
+        )
+    );
+    const tensor turn = motion.orientation() & design.T();
+    const scalar yawDeg =
+        atan2(turn.yx(), turn.xx())*180/constant::mathematical::pi;
+
+    FatalIOErrorInFunction(coeffs)
+        << "At t = " << mesh.time().timeName() << " the mesh that "
+        << "motionSolver sixDoFRigidBodyMotion morphs around the structure"
+        << " has folded (cells turned inside out): the structure has moved "
+        << shift << " m and turned " << yawDeg << " deg (yaw) from its"
+        << " design pose, more than the band between 'innerDistance' ("
+        << coeffs.get<scalar>("innerDistance") << " m) and 'outerDistance' ("
+        << coeffs.get<scalar>("outerDistance") << " m) in " << coeffs.name()
+        << " can take." << nl
+        << "Moor or restrain the structure, widen the band (a larger"
+        << " outerDistance, within the domain), or use motionSolver"
+        << " rigidLidSixDoFRigidBodyMotion, which moves the whole mesh"
+        << " rigidly with the structure."
+        << exit(FatalIOError);
+}
+
+
+// ************************************************************************* //
