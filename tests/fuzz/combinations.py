@@ -29,6 +29,15 @@ can be made again.
       with 1 and 2 threads and restarted at 1 s (binary writes): the DEM
       state, the structure's state, the flow's U and the ice load from 1 s
       on must be identical
+  combinations.py noflow N [FIRST]     random DEM-only studies as kullukPack
+      runs them (iceFloatingFoam -noFlow): a createIceField pack around the
+      moored box (concentration, thickness, floe size, velocity), the
+      DEM's step, K, contact model, current, wind (uniform or table), floe
+      damping, periodic in x and y, in x or none; the box free or held to
+      the plane, moored by 3-12 lines, with wind on it; the structure's step;
+      the load statistics and clearance function objects. 2 s with 1 and 2
+      threads and restarted at 1 s: the DEM state, the structure's state,
+      the ice load and the statistics' samples after 1 s must be identical
 
 Every run must end with exit 0 or with a FOAM FATAL (IO) ERROR, within a
 time bound, without NaN in the log. Cases that do not are printed and
@@ -237,16 +246,17 @@ def invariantRuns(case, app, setEnd, results):
     for c in (two, split):
         shutil.rmtree(c, ignore_errors=True)
         shutil.copytree(case, c)
+    cmd = app if isinstance(app, list) else [app]
     one = dict(os.environ, OMP_NUM_THREADS='1')
-    rc, out = run([app], case, one)
+    rc, out = run(cmd, case, one)
     kind, note = outcome(rc, out), fatalText(out)
     if kind != 'ran':
         return kind, note
-    run([app], two, dict(os.environ, OMP_NUM_THREADS='2'))
+    run(cmd, two, dict(os.environ, OMP_NUM_THREADS='2'))
     setEnd(split, 1, 'startTime')
-    run([app], split, one)
+    run(cmd, split, one)
     setEnd(split, 2, 'latestTime')
-    run([app], split, one)
+    run(cmd, split, one)
     found = [results(c) for c in (case, two, split)]
     if found[0] is None or (isinstance(found[0], tuple) and None in found[0]) \
             or len(set(found)) != 1:
@@ -332,9 +342,10 @@ def coupledBase():
 
 def coupledIceField(rng):
     """1 to 10 prisms on a grid of cells upstream of and beside the hull
-    (the box [-1, 1] x [-1, 1]); 25 cm floes, the hull's 2 cm radius"""
+    (the box [-1, 1] x [-1, 1]; the nearest 0.2 m from it); the hull's 2 cm
+    radius"""
     h = rng.choice([0.15, 0.25, 0.4])
-    cells = [(x, y) for x in (-5.2, -4.2, -3.2, -2.2) for y in (-2.2, -1.1, 0.0, 1.1, 2.2)]
+    cells = [(x, y) for x in (-4.6, -3.6, -2.6, -1.65) for y in (-2.2, -1.1, 0.0, 1.1, 2.2)]
     cells += [(x, y) for x in (-0.6, 0.6, 1.8, 3.0) for y in (-2.2, 2.2)]
     rng.shuffle(cells)
     bodies = []
@@ -481,17 +492,143 @@ def coupledCase(i):
     kind, note = invariantRuns(case, 'iceFloatingFoam',
                                lambda c, end, start: coupledControl(c, end, start, flowStep),
                                coupledResults)
-    return case, '%s (%s)' % (kind, motion), note
+    return case, '%s (%s)' % (kind, motion), note or structureContactNote(case)
+
+
+NOFLOW_BASE = os.path.join(BASES, 'noflow')
+
+
+def noflowField(rng, half):
+    """A createIceFieldDict for the periodic box [-half, half]^2 around the
+    2 m box structure at the origin"""
+    c = rng.choice([0.6, 0.8, 0.9])
+    h = rng.choice([0.2, 0.3, 0.5])
+    u = rng.uniform(0.3, 0.8)
+    return '\n'.join([
+        'FoamFile { version 2.0; format ascii; class dictionary; object createIceFieldDict; }',
+        'region { min (%r %r); max (%r %r); }' % (-half, -half, half, half),
+        'meanFloeArea %r;' % rng.choice([1.0, 2.0, 4.0]),
+        'concentration %r;' % c, 'thickness %r;' % h, 'radius 0.02;',
+        'seed %d;' % rng.randint(0, 1000), 'lloydIterations 1;', 'writeVTK no;',
+        'image { write no; }', 'velocity (%r 0 0);' % u,
+        'exclusionZones { hull { type polygon; points ((-1.3 -1.3) (1.3 -1.3) (1.3 1.3) (-1.3 1.3)); } }'
+    ]) + '\n'
+
+
+def noflowProperties(rng, half):
+    p = open(os.path.join(NOFLOW_BASE, 'constant', 'iceDEMProperties')).read()
+    for block in ('drag', 'wind', 'domain'):
+        p = re.sub(r'\n%s\s*\{(?:[^{}]|\{[^{}]*\})*\}' % block, '\n', p)
+    p = re.sub(r'\ndeltaT\s+[^;]+;', '\ndeltaT %g;' % rng.choice([5e-4, 1e-3]), p)
+    p = re.sub(r'\ncontactModel\s+[^;]+;',
+               '\ncontactModel %s;' % rng.choice(['hertz', 'hertzSimplified']), p)
+    p = p.replace('iceSteel {', 'iceIce { materials (ice ice); friction 0.2; restitution 0.3; }\n'
+                  '    iceSteel {')
+    add = ['drag { type empirical; current (%g %g 0); }'
+           % (rng.choice([0, 0.3, 0.6]), rng.uniform(-0.1, 0.1))]
+    w = rng.random()
+    if w < 0.4:
+        add.append('wind { type uniform; velocity (%g %g 0); }'
+                   % (rng.uniform(0, 20), rng.uniform(-5, 5)))
+    elif w < 0.7:
+        add.append('wind { type table; table ((0 (10 0 0)) (1 (5 5 0)) (2 (15 -5 0))); }')
+    if rng.random() < 0.3:
+        add.append('floeDamping { heave 0.1; rollPitch 0.1; }')
+    add.append('bodyForceInterval %d;' % rng.choice([1, 1, 2, 3]))
+    d = rng.choice(['xy', 'x', 'none'])
+    if d == 'xy':
+        add.append('domain { type periodic; x (%r %r); y (%r %r); }' % (-half, half, -half, half))
+    elif d == 'x':
+        add.append('domain { type periodic; x (%r %r); }' % (-half, half))
+    return p + '\n' + '\n'.join(add) + '\n'
+
+
+def noflowMotion(rng):
+    p = open(os.path.join(NOFLOW_BASE, 'constant', 'dynamicMeshDict')).read()
+    p = re.sub(r'nLines\s+[^;]+;', 'nLines %d;' % rng.choice([3, 4, 8, 12]), p)
+    p = re.sub(r'stiffness\s+[^;]+;', 'stiffness %g;' % rng.choice([1e3, 1e4, 1e5]), p)
+    p = re.sub(r'startAngle\s+[^;]+;', 'startAngle %g;' % rng.uniform(0, 90), p)
+    p = re.sub(r'(windLoad;\s*type\s+uniform;\s*)velocity\s+[^;]+;',
+               r'\1velocity (%g %g 0);' % (rng.uniform(-20, 20), rng.uniform(-20, 20)), p)
+    if rng.random() < 0.5:
+        p = p.replace('    restraints\n', '    constraints\n    {\n'
+                      '        horizontal { sixDoFRigidBodyMotionConstraint plane; normal (0 0 1); }\n'
+                      '        yawOnly { sixDoFRigidBodyMotionConstraint axis; axis (0 0 1); }\n'
+                      '    }\n    restraints\n', 1)
+    return p
+
+
+def noflowControl(case, endTime, startFrom, step, transient, batches):
+    c = open(os.path.join(NOFLOW_BASE, 'system', 'controlDict')).read()
+    c = re.sub(r'\n\s*stopAtHalfWidth\s+[^;]+;', '', c)   # the base's stops at once
+    for key, value in (('endTime', endTime), ('deltaT', step), ('writeControl', 'runTime'),
+                       ('writeInterval', 1), ('startFrom', startFrom), ('timeEnd', 10),
+                       ('transient', transient), ('batches', batches)):
+        c, n = re.subn(r'\n(\s*)%s\s+[^;]+;' % key, r'\n\g<1>%-16s%s;' % (key, value), c)
+        if n == 0:
+            c = c.replace('\nstopAt', '\n%s %s;\nstopAt' % (key, value), 1)
+    open(os.path.join(case, 'system', 'controlDict'), 'w').write(c)
+
+
+def noflowResults(case):
+    """The states at 2 s (DEM without its 'step' line, the structure), the ice
+    load's and the statistics' samples after 1 s"""
+    parts = [stateOf(case, '2')]
+    p = os.path.join(case, '2', 'uniform', 'sixDoFRigidBodyMotionState')
+    parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
+                 if os.path.exists(p) else None)
+    for what in (('iceLoad', 'iceLoad.dat'), ('loads', 'series.dat')):
+        rows = []
+        for d in ('0', '1'):
+            f = os.path.join(case, 'postProcessing', what[0], d, what[1])
+            if os.path.exists(f):
+                rows += [l for l in open(f) if l.strip() and not l.startswith('#')
+                         and float(l.split()[0]) > 1 + 1e-9]
+        parts.append(hashlib.md5(''.join(rows).encode()).hexdigest()[:16] if rows else None)
+    return tuple(parts)
+
+
+def structureContactNote(case):
+    """How many steps of the uninterrupted run had ice on the structure"""
+    f = os.path.join(case, 'postProcessing', 'iceLoad', '0', 'iceLoad.dat')
+    if not os.path.exists(f):
+        return ''
+    rows = [l.split() for l in open(f) if l.strip() and not l.startswith('#')]
+    return '(ice on the structure in %d of %d steps)' % (sum(int(r[7]) > 0 for r in rows),
+                                                         len(rows))
+
+
+def noflowCase(i):
+    rng = random.Random(i)
+    case = os.path.join(SCRATCH, 'noflow%d' % i)
+    shutil.rmtree(case, ignore_errors=True)
+    shutil.copytree(NOFLOW_BASE, case)
+    os.remove(os.path.join(case, 'constant', 'iceField'))   # createIceField's
+    half = rng.choice([6.0, 10.0])
+    open(os.path.join(case, 'system', 'createIceFieldDict'), 'w').write(noflowField(rng, half))
+    open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
+        noflowProperties(rng, half))
+    open(os.path.join(case, 'constant', 'dynamicMeshDict'), 'w').write(noflowMotion(rng))
+    step, transient, batches = rng.choice([0.01, 0.02, 0.05]), rng.choice([0, 0.5]), \
+        rng.choice([2, 5])
+    setEnd = lambda c, end, start: noflowControl(c, end, start, step, transient, batches)
+    setEnd(case, 2, 'startTime')
+    for cmd in (['createStructure'], ['createIceField']):
+        rc, out = run(cmd, case)
+        if rc != 0:
+            return case, '%s %s' % (cmd[0], outcome(rc, out)), fatalText(out)
+    kind, note = invariantRuns(case, ['iceFloatingFoam', '-noFlow'], setEnd, noflowResults)
+    return case, kind, note or structureContactNote(case)
 
 
 def main():
-    if len(sys.argv) < 3 or sys.argv[1] not in ('field', 'dem', 'structure', 'coupled'):
+    if len(sys.argv) < 3 or sys.argv[1] not in ('field', 'dem', 'structure', 'coupled', 'noflow'):
         print(__doc__)
         sys.exit(1)
     what, n = sys.argv[1], int(sys.argv[2])
     first = int(sys.argv[3]) if len(sys.argv) > 3 else 0
     one = {'field': fieldCase, 'dem': demCaseRun, 'structure': structureCase,
-           'coupled': coupledCase}[what]
+           'coupled': coupledCase, 'noflow': noflowCase}[what]
     counts = {}
     for i in range(first, first + n):
         case, kind, note = one(i)

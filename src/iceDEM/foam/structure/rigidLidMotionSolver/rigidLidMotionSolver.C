@@ -118,7 +118,6 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
     curTimeIndex_(-1),
     flowForce_(Zero),
     flowMoment_(Zero),
-    forceCofR_(Zero),
     forceEvents_(label(-1))
 {
     // The only mesh motion a rigid lid allows
@@ -170,6 +169,12 @@ void Foam::rigidLidMotionSolver::flowForce(vector& F, vector& M)
     const point cofR = motion_.centreOfRotation();
     const FixedList<label, 4> events = flowEvents();
 
+    // The moment is taken about the design centre of mass, a point fixed
+    // by the dictionary, and moved to the current centre of rotation below
+    // in both cases: a force kept from an earlier evaluation and one
+    // evaluated now (the first step after a restart) give the same bits
+    const point momentRef = motion_.initialCentreOfMass();
+
     if (events != forceEvents_)
     {
         // The pressure and viscous stress on the patches: the viscous part
@@ -180,13 +185,12 @@ void Foam::rigidLidMotionSolver::flowForce(vector& F, vector& M)
         forcesDict.add("patches", patches_);
         forcesDict.add("rhoInf", rhoInf_);
         forcesDict.add("rho", rhoName_);
-        forcesDict.add("CofR", cofR);
+        forcesDict.add("CofR", momentRef);
         functionObjects::forces f("forces", t, forcesDict);
         f.calcForcesMoment();
 
         flowForce_ = f.forceEff();
         flowMoment_ = f.momentEff();
-        forceCofR_ = cofR;
         forceEvents_ = events;
 
         DebugInfo
@@ -197,7 +201,7 @@ void Foam::rigidLidMotionSolver::flowForce(vector& F, vector& M)
     // Unchanged mesh and fields (a step without a flow solution and without
     // mesh motion): the same force; its moment moved to the current centre
     F = flowForce_;
-    M = flowMoment_ + ((forceCofR_ - cofR) ^ flowForce_);
+    M = flowMoment_ + ((momentRef - cofR) ^ flowForce_);
 }
 
 
