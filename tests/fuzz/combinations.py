@@ -28,12 +28,14 @@ can be made again.
       lid, with hydrostatics, a spread mooring and wind on it), 2 s, run
       with 1 and 2 threads and restarted at 1 s (binary writes): the DEM
       state, the structure's state, the flow's U and the ice load from 1 s
-      on must be identical
+      on must be identical; a third of them also on 2 ranks, uninterrupted
+      and restarted at 1 s, identical on each rank
   combinations.py noflow N [FIRST]     random DEM-only studies as kullukPack
       runs them (iceFloatingFoam -noFlow): a createIceField pack around the
       moored box (concentration, thickness, floe size, velocity), the
       DEM's step, K, contact model, current, wind (uniform or table), floe
-      damping, periodic in x and y, in x or none; the box free or held to
+      damping, periodic in x and y, in x, none or inflow/outflow; the box
+      free or held to
       the plane, moored by 3-12 lines, with wind on it; the structure's step;
       the load statistics and clearance function objects. 2 s with 1 and 2
       threads and restarted at 1 s: the DEM state, the structure's state,
@@ -475,6 +477,47 @@ def coupledResults(case):
     return tuple(parts)
 
 
+def parallelRestart(case, endTime):
+    """The case on 2 ranks (its decomposeParDict), 0 -> endTime and
+    restarted at half of it: (kind, note), every processor's DEM state,
+    structure state and U at endTime identical"""
+    env = dict(os.environ, OMP_NUM_THREADS='1', OMPI_ALLOW_RUN_AS_ROOT='1',
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
+    par = ['mpirun', '-np', '2', 'iceFloatingFoam', '-parallel']
+    found = []
+    for name, stops in (('_par', [endTime]), ('_parRestart', [endTime/2, endTime])):
+        c = case + name
+        shutil.rmtree(c, ignore_errors=True)
+        os.makedirs(c)
+        for d in ('0', 'constant', 'system'):
+            shutil.copytree(os.path.join(case, d), os.path.join(c, d))
+        run(['decomposePar'], c, env)
+        for k, stop in enumerate(stops):
+            text = open(os.path.join(c, 'system', 'controlDict')).read()
+            text = re.sub(r'\nendTime\s+[^;]+;', '\nendTime %g;' % stop, text)
+            text = re.sub(r'\nstartFrom\s+[^;]+;', '\nstartFrom %s;'
+                          % ('latestTime' if k else 'startTime'), text)
+            open(os.path.join(c, 'system', 'controlDict'), 'w').write(text)
+            rc, out = run(par, c, env)
+            kind = outcome(rc, out)
+            if kind != 'ran':
+                return '2 ranks ' + kind, fatalText(out)
+        parts = []
+        for proc in ('processor0', 'processor1'):
+            t = os.path.join(c, proc)
+            parts.append(stateOf(t, '%g' % endTime))
+            for f in ('uniform/sixDoFRigidBodyMotionState', 'U'):
+                p = os.path.join(t, '%g' % endTime, f)
+                parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
+                             if os.path.exists(p) else None)
+        found.append(tuple(parts))
+    if None in found[0] or found[0] != found[1]:
+        return 'INVARIANT 2 ranks', 'uninterrupted %s, restarted %s' % tuple(found)
+    for name in ('_par', '_parRestart'):
+        shutil.rmtree(case + name, ignore_errors=True)
+    return 'ran, 2 ranks = 2 ranks restarted', ''
+
+
 def coupledCase(i):
     rng = random.Random(i)
     base = coupledBase()
@@ -492,6 +535,12 @@ def coupledCase(i):
     kind, note = invariantRuns(case, 'iceFloatingFoam',
                                lambda c, end, start: coupledControl(c, end, start, flowStep),
                                coupledResults)
+    if kind.startswith('ran') and rng.random() < 0.3:
+        kind2, note2 = parallelRestart(case, 2)
+        if not kind2.startswith('ran'):
+            kind, note = kind2, note2
+        else:
+            kind += '; ' + kind2
     return case, '%s (%s)' % (kind, motion), note or structureContactNote(case)
 
 
@@ -535,11 +584,17 @@ def noflowProperties(rng, half):
     if rng.random() < 0.3:
         add.append('floeDamping { heave 0.1; rollPitch 0.1; }')
     add.append('bodyForceInterval %d;' % rng.choice([1, 1, 2, 3]))
-    d = rng.choice(['xy', 'x', 'none'])
+    d = rng.choice(['xy', 'x', 'none', 'inflow'])
     if d == 'xy':
         add.append('domain { type periodic; x (%r %r); y (%r %r); }' % (-half, half, -half, half))
     elif d == 'x':
         add.append('domain { type periodic; x (%r %r); }' % (-half, half))
+    elif d == 'inflow':
+        add.append('domain { type inflowOutflow; direction x; upstream %r; downstream %r; '
+                   'stripWidth %r; interval %g; material ice; '
+                   'fieldDict "system/createIceFieldDict"; sides %s; }'
+                   % (-half, half, half/rng.choice([2, 3]), rng.choice([0.2, 1]),
+                      rng.choice(['open', 'periodic'])))
     return p + '\n' + '\n'.join(add) + '\n'
 
 
