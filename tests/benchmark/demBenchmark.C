@@ -97,6 +97,7 @@ Usage
 #include "hydro/FlowVelocity.H"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -105,6 +106,7 @@ Usage
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <iostream>
 #include <memory>
 #include <set>
@@ -228,15 +230,74 @@ std::uint64_t fieldHash(const std::vector<Floe>& floes)
 }
 
 
-std::vector<int> parseIntList(const std::string& s)
+[[noreturn]] void usage(const char* msg);
+
+
+//- The option's value as a whole integer >= least, else the usage line
+//  naming the option (atoi took '0' and 'abc' alike, as 0)
+int intOption(const std::string& opt, const std::string& text, long least)
+{
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || v < least
+     || v > std::numeric_limits<int>::max())
+    {
+        usage((opt + " '" + text + "': an integer >= " + std::to_string(least)
+            + " is needed").c_str());
+    }
+    return int(v);
+}
+
+
+//- The option's value as a finite number >= least (> least: above; least
+//  -infinity: any finite number)
+double realOption
+(
+    const std::string& opt,
+    const std::string& text,
+    double least,
+    bool above = false
+)
+{
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if
+    (
+        text.empty() || *end != '\0' || errno != 0 || !std::isfinite(v)
+     || v < least || (above && !(v > least))
+    )
+    {
+        std::ostringstream msg;
+        msg << opt << " '" << text << "': a finite number";
+        if (std::isfinite(least))
+        {
+            msg << (above ? " > " : " >= ") << least;
+        }
+        msg << " is needed";
+        usage(msg.str().c_str());
+    }
+    return v;
+}
+
+
+//- A comma-separated list of integers >= least, at least one
+std::vector<int> intListOption
+(
+    const std::string& opt,
+    const std::string& s,
+    long least
+)
 {
     std::vector<int> out;
     std::stringstream ss(s);
     std::string item;
     while (std::getline(ss, item, ','))
     {
-        if (!item.empty()) out.push_back(std::atoi(item.c_str()));
+        out.push_back(intOption(opt, item, least));
     }
+    if (out.empty()) usage((opt + ": an empty list").c_str());
     return out;
 }
 
@@ -315,11 +376,11 @@ Options parseOptions(int argc, char* argv[])
                 usage("-fields: drift, compact and/or float");
             }
         }
-        else if (opt == "-N") o.sizes = parseIntList(value());
-        else if (opt == "-compactN") o.compactN = std::atoi(value().c_str());
-        else if (opt == "-floatN") o.floatN = std::atoi(value().c_str());
+        else if (opt == "-N") o.sizes = intListOption(opt, value(), 1);
+        else if (opt == "-compactN") o.compactN = intOption(opt, value(), 1);
+        else if (opt == "-floatN") o.floatN = intOption(opt, value(), 1);
         else if (opt == "-dragIntegration") o.dragIntegration = value();
-        else if (opt == "-wind") o.wind = std::atof(value().c_str());
+        else if (opt == "-wind") o.wind = realOption(opt, value(), -std::numeric_limits<double>::infinity());
         else if (opt == "-windIntegration") o.windIntegration = value();
         else if (opt == "-floeDamping")
         {
@@ -327,26 +388,35 @@ Options parseOptions(int argc, char* argv[])
             if (v != "on" && v != "off") usage("-floeDamping: on or off");
             o.floeDamping = v == "on";
         }
-        else if (opt == "-bodyForceInterval") o.bodyForceInterval = std::max(1, std::atoi(value().c_str()));
-        else if (opt == "-threads") o.threads = parseIntList(value());
-        else if (opt == "-steps") o.steps = std::atoi(value().c_str());
-        else if (opt == "-duration") o.duration = std::atof(value().c_str());
-        else if (opt == "-compactSteps") o.compactSteps = std::atoi(value().c_str());
+        else if (opt == "-bodyForceInterval") o.bodyForceInterval = intOption(opt, value(), 1);
+        else if (opt == "-threads") o.threads = intListOption(opt, value(), 1);
+        else if (opt == "-steps") o.steps = intOption(opt, value(), 0);
+        else if (opt == "-duration") o.duration = realOption(opt, value(), 0, true);
+        else if (opt == "-compactSteps") o.compactSteps = intOption(opt, value(), 1);
         else if (opt == "-h" || opt == "-help") usage("help");
-        else if (opt == "-reps") o.reps = std::max(1, std::atoi(value().c_str()));
-        else if (opt == "-warmup") o.warmup = std::atof(value().c_str());
-        else if (opt == "-compactTime") o.compactTime = std::atof(value().c_str());
-        else if (opt == "-push") o.push = std::atof(value().c_str());
-        else if (opt == "-skin") o.skin = std::atof(value().c_str());
-        else if (opt == "-featureSkin") o.featureSkin = std::atof(value().c_str());
-        else if (opt == "-lloyd") o.lloyd = std::atoi(value().c_str());
-        else if (opt == "-seed") o.seed = std::strtoull(value().c_str(), nullptr, 10);
+        else if (opt == "-reps") o.reps = intOption(opt, value(), 1);
+        else if (opt == "-warmup") o.warmup = realOption(opt, value(), 0);
+        else if (opt == "-compactTime") o.compactTime = realOption(opt, value(), 0, true);
+        else if (opt == "-push") o.push = realOption(opt, value(), 0);
+        else if (opt == "-skin") o.skin = realOption(opt, value(), -std::numeric_limits<double>::infinity());
+        else if (opt == "-featureSkin") o.featureSkin = realOption(opt, value(), -std::numeric_limits<double>::infinity());
+        else if (opt == "-lloyd") o.lloyd = intOption(opt, value(), 0);
+        else if (opt == "-seed")
+        {
+            const std::string v = value();
+            char* end = nullptr;
+            errno = 0;
+            o.seed = std::strtoull(v.c_str(), &end, 10);
+            if (v.empty() || v[0] == '-' || *end != '\0' || errno != 0)
+            {
+                usage(("-seed '" + v + "': an integer >= 0 is needed").c_str());
+            }
+        }
         else if (opt == "-cache") o.cache = value();
         else if (opt == "-callgrind") o.callgrind = true;
         else if (opt == "-hydroAccuracy") o.hydroAccuracy = true;
         else usage(("unknown option " + opt).c_str());
     }
-    if (o.threads.empty()) usage("-threads: empty list");
     return o;
 }
 
