@@ -35,11 +35,11 @@ can be made again.
       moored box (concentration, thickness, floe size, velocity), the
       DEM's step, K, contact model, current, wind (uniform or table), floe
       damping, periodic in x and y, in x, none or inflow/outflow; the box
-      free or held to
-      the plane, moored by 3-12 lines, with wind on it; the structure's step;
-      the load statistics and clearance function objects. 2 s with 1 and 2
-      threads and restarted at 1 s: the DEM state, the structure's state,
-      the ice load and the statistics' samples after 1 s must be identical
+      free or held to the plane, moored by 3-12 lines, with wind on it; the
+      structure's step; the load statistics and clearance function objects.
+      2 s with 1 and 2 threads and restarted at 1 s: the DEM state, the
+      structure's state, the ice load and the statistics' samples after 1 s
+      must be identical
 
 Every run must end with exit 0 or with a FOAM FATAL (IO) ERROR, within a
 time bound, without NaN in the log. Cases that do not are printed and
