@@ -206,13 +206,42 @@ def demProperties(rng, L, W, x0, y0, h):
     return p + '\n' + '\n'.join(add) + '\n'
 
 
+def digest(data):
+    return hashlib.md5(data).hexdigest()[:16]
+
+
+def fileDigest(path):
+    """The file's digest, None when it is missing"""
+    return digest(open(path, 'rb').read()) if os.path.exists(path) else None
+
+
 def stateOf(case, time):
     """The DEM state at time, its 'step' line (the run's own count) out"""
     f = os.path.join(case, time, 'uniform', 'iceDEMState')
     if not os.path.exists(f):
         return None
     lines = [l for l in open(f, 'rb').read().split(b'\n') if not l.startswith(b'step ')]
-    return hashlib.md5(b'\n'.join(lines)).hexdigest()[:16]
+    return digest(b'\n'.join(lines))
+
+
+def samplesAfter(case, function, name, time=1):
+    """The digest of the rows after time of postProcessing/<function>/<start>/
+    <name> (start 0, and 1 for a run restarted there), None without rows"""
+    rows = []
+    for d in ('0', '1'):
+        p = os.path.join(case, 'postProcessing', function, d, name)
+        if os.path.exists(p):
+            rows += [l for l in open(p) if l.strip() and not l.startswith('#')
+                     and float(l.split()[0]) > time + 1e-9]
+    return digest(''.join(rows).encode()) if rows else None
+
+
+def resultsAt(case, time, files, samples):
+    """The DEM state at time, the digests of the time's files and those of
+    the samples after 1 s ((function, file) pairs)"""
+    return tuple([stateOf(case, time)]
+                 + [fileDigest(os.path.join(case, time, f)) for f in files]
+                 + [samplesAfter(case, fn, name) for fn, name in samples])
 
 
 def newCase(name):
@@ -462,19 +491,8 @@ def coupledPimple(rng, case):
 def coupledResults(case):
     """The states at 2 s (DEM without its 'step' line, the structure, U)
     and the ice load's rows after 1 s"""
-    parts = [stateOf(case, '2')]
-    for f in ('2/uniform/sixDoFRigidBodyMotionState', '2/U'):
-        p = os.path.join(case, f)
-        parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
-                     if os.path.exists(p) else None)
-    rows = []
-    for d in ('0', '1'):
-        p = os.path.join(case, 'postProcessing', 'iceLoad', d, 'iceLoad.dat')
-        if os.path.exists(p):
-            rows += [l for l in open(p) if l.strip() and not l.startswith('#')
-                     and float(l.split()[0]) > 1 + 1e-9]
-    parts.append(hashlib.md5(''.join(rows).encode()).hexdigest()[:16] if rows else None)
-    return tuple(parts)
+    return resultsAt(case, '2', ('uniform/sixDoFRigidBodyMotionState', 'U'),
+                     (('iceLoad', 'iceLoad.dat'),))
 
 
 def parallelRestart(case, endTime):
@@ -502,15 +520,9 @@ def parallelRestart(case, endTime):
             kind = outcome(rc, out)
             if kind != 'ran':
                 return '2 ranks ' + kind, fatalText(out)
-        parts = []
-        for proc in ('processor0', 'processor1'):
-            t = os.path.join(c, proc)
-            parts.append(stateOf(t, '%g' % endTime))
-            for f in ('uniform/sixDoFRigidBodyMotionState', 'U'):
-                p = os.path.join(t, '%g' % endTime, f)
-                parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
-                             if os.path.exists(p) else None)
-        found.append(tuple(parts))
+        found.append(sum((resultsAt(os.path.join(c, proc), '%g' % endTime,
+                                    ('uniform/sixDoFRigidBodyMotionState', 'U'), ())
+                          for proc in ('processor0', 'processor1')), ()))
     if None in found[0] or found[0] != found[1]:
         return 'INVARIANT 2 ranks', 'uninterrupted %s, restarted %s' % tuple(found)
     for name in ('_par', '_parRestart'):
@@ -628,19 +640,8 @@ def noflowControl(case, endTime, startFrom, step, transient, batches):
 def noflowResults(case):
     """The states at 2 s (DEM without its 'step' line, the structure), the ice
     load's and the statistics' samples after 1 s"""
-    parts = [stateOf(case, '2')]
-    p = os.path.join(case, '2', 'uniform', 'sixDoFRigidBodyMotionState')
-    parts.append(hashlib.md5(open(p, 'rb').read()).hexdigest()[:16]
-                 if os.path.exists(p) else None)
-    for what in (('iceLoad', 'iceLoad.dat'), ('loads', 'series.dat')):
-        rows = []
-        for d in ('0', '1'):
-            f = os.path.join(case, 'postProcessing', what[0], d, what[1])
-            if os.path.exists(f):
-                rows += [l for l in open(f) if l.strip() and not l.startswith('#')
-                         and float(l.split()[0]) > 1 + 1e-9]
-        parts.append(hashlib.md5(''.join(rows).encode()).hexdigest()[:16] if rows else None)
-    return tuple(parts)
+    return resultsAt(case, '2', ('uniform/sixDoFRigidBodyMotionState',),
+                     (('iceLoad', 'iceLoad.dat'), ('loads', 'series.dat')))
 
 
 def structureContactNote(case):
