@@ -32,10 +32,11 @@ can be made again.
       and restarted at 1 s, identical on each rank
   combinations.py noflow N [FIRST]     random DEM-only studies as kullukPack
       runs them (iceFloatingFoam -noFlow): a createIceField pack around the
-      moored box (concentration, thickness, floe size, velocity), the
+      moored structure (concentration, thickness, floe size, velocity), the
       DEM's step, K, contact model, current, wind (uniform or table), floe
-      damping, periodic in x and y, in x, none or inflow/outflow; the box
-      free or held to the plane, moored by 3-12 lines, with wind on it; the
+      damping, periodic in x and y, in x, none or inflow/outflow; the 2 m
+      box or a random facetedHull inside it, free or held to the plane,
+      moored by 3-12 lines, with wind on it; the
       structure's step; the load statistics and clearance function objects.
       2 s with 1 and 2 threads and restarted at 1 s: the DEM state, the
       structure's state, the ice load and the statistics' samples after 1 s
@@ -315,25 +316,33 @@ def demCaseRun(i):
     return case, kind, note
 
 
-def structureCase(i):
-    rng = random.Random(i)
-    case = os.path.join(SCRATCH, 'structure%d' % i)
-    shutil.rmtree(case, ignore_errors=True)
-    shutil.copytree(os.path.join(BASES, 'noflow'), case)
+def facetedHullDict(rng, largestDiameter, offset):
+    """A random facetedHull structureDict: 2-6 profile points up to 3 m high
+    (a flat step now and then), diameters up to largestDiameter, the draft
+    up to 1.2 times the height (a hull that would sink), the centre within
+    offset of the origin"""
     n = rng.randint(2, 6)
     H = rng.uniform(0.2, 3)
     heights = [0.0] + sorted(rng.uniform(0, H) for _ in range(n - 2)) + [H]
     if rng.random() < 0.15:
         heights[1] = heights[0]
-    diameters = [rng.uniform(0.05, 4.5) for _ in range(n)]
-    text = ('FoamFile { version 2.0; format ascii; class dictionary; object structureDict; }\n'
+    diameters = [rng.uniform(0.05, largestDiameter) for _ in range(n)]
+    return ('FoamFile { version 2.0; format ascii; class dictionary; object structureDict; }\n'
             'type facetedHull;\nwater { density 1025; level 0; }\n'
             'facetedHull { position (%r %r); nFacets %d; diameters %s; draft %r; profile (%s); }\n'
-            % (rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3),
+            % (rng.uniform(-offset, offset), rng.uniform(-offset, offset),
                rng.choice([3, 4, 5, 8, 24, 64, rng.randint(3, 40)]),
                rng.choice(['corners', 'flats']), rng.uniform(0.05, 1.2*H),
                ' '.join('(%r %r)' % p for p in zip(heights, diameters))))
-    open(os.path.join(case, 'constant', 'structureDict'), 'w').write(text)
+
+
+def structureCase(i):
+    rng = random.Random(i)
+    case = os.path.join(SCRATCH, 'structure%d' % i)
+    shutil.rmtree(case, ignore_errors=True)
+    shutil.copytree(os.path.join(BASES, 'noflow'), case)
+    open(os.path.join(case, 'constant', 'structureDict'), 'w').write(
+        facetedHullDict(rng, 4.5, 0.3))
     rc, out = run(['createStructure'], case)
     kind, note = outcome(rc, out), fatalText(out)
     if kind == 'ran':
@@ -665,6 +674,11 @@ def noflowCase(i):
     open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
         noflowProperties(rng, half))
     open(os.path.join(case, 'constant', 'dynamicMeshDict'), 'w').write(noflowMotion(rng))
+    if rng.random() < 0.5:
+        # a faceted hull (a cone, a column, a cone on a column ...) instead
+        # of the box, inside the field's exclusion square at +-1.3 m
+        open(os.path.join(case, 'constant', 'structureDict'), 'w').write(
+            facetedHullDict(rng, 2.4, 0.05))
     step, transient, batches = rng.choice([0.01, 0.02, 0.05]), rng.choice([0, 0.5]), \
         rng.choice([2, 5])
     setEnd = lambda c, end, start: noflowControl(c, end, start, step, transient, batches)
