@@ -94,6 +94,7 @@ void World::sumBodyChunk
                 // Second half kick of a step (velocity Verlet)
                 if (dtKick > 0) halfKick(body, dtKick);
             }
+            storable(body, settings_.storeFloor);
         }
         return;
     }
@@ -120,6 +121,7 @@ void World::sumBodyChunk
         }
         // Second half kick of a step (velocity Verlet)
         if (body.isFree() && dtKick > 0) halfKick(body, dtKick);
+        storable(body, settings_.storeFloor);
     }
 }
 

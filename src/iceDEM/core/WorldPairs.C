@@ -339,6 +339,7 @@ void World::pairForces(double dtTangential)
                 for (int l = 0; l < two; ++l)
                 {
                     const FoundContact& fc = found[c + l];
+                    storable(sc[l].xi, settings_.storeFloor);
                     S.contacts.push_back(sc[l]);
                     ++p.nContacts;
 

@@ -81,6 +81,10 @@ using namespace Foam::iceDEMChecks;
         s.bodyForceInterval = int(k);
     }
 
+    // The restart state is read by OpenFOAM's tokenizer, which gives +0 for
+    // "-0" and for |value| <= VSMALL: the running state keeps those as +0
+    s.storeFloor = VSMALL;
+
     if (s.contactStepsMin > s.contactStepsWarn)
     {
         FatalIOErrorInFunction(d)
