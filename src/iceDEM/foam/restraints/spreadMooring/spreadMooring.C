@@ -10,6 +10,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "spreadMooring.H"
+#include "motionConstraints.H"
 #include "IOField.H"
 #include "addToRunTimeSelectionTable.H"
 #include "caseEntries.H"
@@ -284,6 +285,61 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 }
 
 
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
+(
+    const sixDoFRigidBodyMotion& motion
+) const
+{
+    // The stiffness with every line taut (a line slack now, on the side the
+    // structure moved towards, pulls again when it swings back: the motion
+    // meets this stiffness), in the free horizontal directions (the
+    // constraints' projection; heave is left out: it has its own added
+    // mass and hydrostatics); its largest eigenvalue over the mass without
+    // added mass (the fluid's would lower the frequency): a bound from above
+    tensor K(Zero);
+    forAll(anchors_, i)
+    {
+        const vector r = motion.transform(fairleads_[i]) - anchors_[i];
+        const scalar L = mag(r);
+        const vector e = r/(L + VSMALL);
+        const scalar T = max(scalar(0), stiffness_[i]*(L - restLength_[i]));
+        K += stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
+    }
+    const tensor C(translationConstraints(motion));
+    const tensor Kf(C & K & C);
+    const scalar a = Kf.xx(), b = 0.5*(Kf.xy() + Kf.yx()), d = Kf.yy();
+    const scalar kMax =
+        0.5*(a + d) + Foam::sqrt(sqr(0.5*(a - d)) + sqr(b));
+    if (!(kMax > 0))
+    {
+        return;
+    }
+    const scalar omega = Foam::sqrt(kMax/motion.mass());
+    const scalar dt = motion.time().deltaTValue();
+    const scalar period = constant::mathematical::twoPi/omega;
+    Info<< "    shortest horizontal period 2 pi sqrt(M/K) = " << period
+        << " s: " << period/dt << " structure steps (deltaT " << dt
+        << " s)" << endl;
+
+    // The structure's integrators (OpenFOAM's symplectic, rigidLidSymplectic)
+    // are stable for omega deltaT < 2 only: beyond, the motion grows without
+    // bound (a floating point exception after some steps)
+    if (omega*dt >= 2)
+    {
+        FatalIOErrorInFunction(coeffDict())
+            << "Entry 'stiffness' of restraint " << name_ << " in "
+            << coeffDict().name() << ": the lines' horizontal stiffness "
+            << kMax << " N/m and the structure's mass " << motion.mass()
+            << " kg give a period 2 pi sqrt(M/K) = " << period << " s, which"
+            << " the structure's step deltaT = " << dt << " s (system/"
+            << "controlDict) does not resolve: the motion is stable for"
+            << " deltaT < period/pi = " << period/constant::mathematical::pi
+            << " s only. Reduce deltaT or the stiffness." << nl
+            << exit(FatalIOError);
+    }
+}
+
+
 void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
 (
     const sixDoFRigidBodyMotion& motion,
@@ -305,6 +361,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
             << constant::mathematical::twoPi
               *Foam::sqrt(motion.mass()/max(K.xx(), VSMALL))
             << " s" << endl;
+        checkPeriodResolved(motion);
     }
 
     const scalarField T(tensions(motion));

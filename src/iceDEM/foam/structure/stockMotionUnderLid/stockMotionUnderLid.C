@@ -9,50 +9,18 @@
 \*---------------------------------------------------------------------------*/
 
 #include "stockMotionUnderLid.H"
-#include "sixDoFSolver.H"
+#include "motionConstraints.H"
 #include "mathematicalConstants.H"
-
-// * * * * * * * * * * * * * * * Local Classes * * * * * * * * * * * * * * * //
-
-namespace
-{
-
-using namespace Foam;
-
-//- The motion's constraint tensors (private to it; its integrators read
-//  them through sixDoFSolver's protected accessors). Never asked to solve
-class constraintTensors : public sixDoFSolver
-{
-public:
-
-    explicit constraintTensors(const sixDoFRigidBodyMotion& motion)
-    :
-        sixDoFSolver(dictionary(), const_cast<sixDoFRigidBodyMotion&>(motion))
-    {}
-
-    autoPtr<sixDoFSolver> clone() const override
-    {
-        return autoPtr<sixDoFSolver>(new constraintTensors(body_));
-    }
-
-    void solve(bool, const vector&, const vector&, scalar, scalar) override
-    {}
-
-    using sixDoFSolver::tConstraints;
-    using sixDoFSolver::rConstraints;
-};
-
-} // End anonymous namespace
-
 
 // * * * * * * * * * * * * * * * * Functions  * * * * * * * * * * * * * * * //
 
 void Foam::checkStockMotionUnderLid(const sixDoFRigidBodyMotionSolver& solver)
 {
-    const constraintTensors c(solver.motion());
-    const bool heave = mag(c.tConstraints() & vector(0, 0, 1)) > 0;
-    const bool roll = mag(c.rConstraints() & vector(1, 0, 0)) > 0;
-    const bool pitch = mag(c.rConstraints() & vector(0, 1, 0)) > 0;
+    const tensor t(translationConstraints(solver.motion()));
+    const tensor r(rotationConstraints(solver.motion()));
+    const bool heave = mag(t & vector(0, 0, 1)) > 0;
+    const bool roll = mag(r & vector(1, 0, 0)) > 0;
+    const bool pitch = mag(r & vector(0, 1, 0)) > 0;
     if (!(heave || roll || pitch))
     {
         return;
