@@ -265,7 +265,8 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
 Foam::tensor
 Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 (
-    const sixDoFRigidBodyMotion& motion
+    const sixDoFRigidBodyMotion& motion,
+    const bool everyLineTaut
 ) const
 {
     tensor K(Zero);
@@ -276,9 +277,11 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
         const scalar L = mag(r);
         const vector e = r/(L + VSMALL);
         const scalar T = stiffness_[i]*(L - restLength_[i]);
-        if (T > 0)
+        if (T > 0 || everyLineTaut)
         {
-            K += stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
+            K +=
+                stiffness_[i]*sqr(e)
+              + (max(T, scalar(0))/L)*(tensor::I - sqr(e));
         }
     }
     return K;
@@ -296,15 +299,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
     // constraints' projection; heave is left out: it has its own added
     // mass and hydrostatics); its largest eigenvalue over the mass without
     // added mass (the fluid's would lower the frequency): a bound from above
-    tensor K(Zero);
-    forAll(anchors_, i)
-    {
-        const vector r = motion.transform(fairleads_[i]) - anchors_[i];
-        const scalar L = mag(r);
-        const vector e = r/(L + VSMALL);
-        const scalar T = max(scalar(0), stiffness_[i]*(L - restLength_[i]));
-        K += stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
-    }
+    const tensor K(stiffnessMatrix(motion, true));
     const tensor C(translationConstraints(motion));
     const tensor Kf(C & K & C);
     const scalar a = Kf.xx(), b = 0.5*(Kf.xy() + Kf.yx()), d = Kf.yy();
