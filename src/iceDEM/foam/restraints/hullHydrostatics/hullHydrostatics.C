@@ -13,8 +13,11 @@
 #include "addToRunTimeSelectionTable.H"
 #include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
+#include "verticalModes.H"
 #include "uniformDimensionedFields.H"
 #include "IFstream.H"
+#include "quaternion.H"
+#include "transformField.H"
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
@@ -102,6 +105,55 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::check
             << " in dynamicMeshDict." << nl
             << exit(FatalIOError);
     }
+
+    addVerticalStiffness(motion.time(), name_, verticalStiffness(motion));
+}
+
+
+Foam::vector
+Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::verticalStiffness
+(
+    const sixDoFRigidBodyMotion& motion
+) const
+{
+    const vector g = gravity(motion.time(), sDoFRBMRCoeffs_);
+    const point G = motion.centreOfMass();
+    const pointField pts(motion.transform(points0_));
+
+    // Buoyancy's vertical force and its moments about G (the weight has
+    // none about G) at the pose moved by a heave, a roll or a pitch
+    const auto restoring = [&](const pointField& p)
+    {
+        const floatingStructure::submergedPart sub =
+            floatingStructure::clip(p, faces_, level_);
+        const vector F = -rhoWater_*sub.volume*g;
+        const vector M = (sub.centroid - G) ^ F;
+        return vector(F.z(), M.x(), M.y());
+    };
+    const auto rotated = [&](const vector& axis, scalar angle)
+    {
+        const tensor R(quaternion(axis, angle).R());
+        return pointField(G + transform(R, pointField(pts - G)));
+    };
+    const auto raised = [&](scalar dz)
+    {
+        return pointField(pts + vector(0, 0, dz));
+    };
+
+    // Central differences of the exact clip (piecewise polynomial in the
+    // pose): steps small against the hull, large against round-off. A
+    // hull whose profile has a kink at the waterline (a cone below a
+    // column) has a one-sided stiffness each way, the difference averages
+    // them: within the waterplane area's slope times dz/4
+    const scalar dz = 1e-6*mag(max(points0_) - min(points0_));
+    const scalar da = 1e-6;
+    const vector ex(1, 0, 0), ey(0, 1, 0);
+    return vector
+    (
+        -(restoring(raised(dz)).x() - restoring(raised(-dz)).x())/(2*dz),
+        -(restoring(rotated(ex, da)).y() - restoring(rotated(ex, -da)).y())/(2*da),
+        -(restoring(rotated(ey, da)).z() - restoring(rotated(ey, -da)).z())/(2*da)
+    );
 }
 
 

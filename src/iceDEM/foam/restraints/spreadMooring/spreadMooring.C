@@ -11,6 +11,7 @@
 
 #include "spreadMooring.H"
 #include "motionConstraints.H"
+#include "verticalModes.H"
 #include "IOField.H"
 #include "addToRunTimeSelectionTable.H"
 #include "caseEntries.H"
@@ -288,6 +289,38 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 }
 
 
+Foam::vector
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalStiffness
+(
+    const sixDoFRigidBodyMotion& motion
+) const
+{
+    const point G = motion.centreOfMass();
+    const vector ez(0, 0, 1);
+    const FixedList<vector, 2> axes({vector(1, 0, 0), vector(0, 1, 0)});
+    vector C(Zero);
+    forAll(anchors_, i)
+    {
+        const point f = motion.transform(fairleads_[i]);
+        const vector r = f - anchors_[i];
+        const scalar L = mag(r);
+        const vector e = r/(L + VSMALL);
+        const scalar T = max(stiffness_[i]*(L - restLength_[i]), scalar(0));
+        const tensor K = stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
+        const vector arm = f - G;
+        const vector F = -T*e;
+        C.x() += ez & K & ez;
+        for (label k = 0; k < 2; ++k)
+        {
+            const vector& a = axes[k];
+            const vector df = a ^ arm;
+            C[k + 1] += (df & K & df) + (arm & F) - (a & arm)*(a & F);
+        }
+    }
+    return C;
+}
+
+
 void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
 (
     const sixDoFRigidBodyMotion& motion
@@ -357,6 +390,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
               *Foam::sqrt(motion.mass()/max(K.xx(), VSMALL))
             << " s" << endl;
         checkPeriodResolved(motion);
+        addVerticalStiffness(runTime, name_, verticalStiffness(motion));
     }
 
     const scalarField T(tensions(motion));

@@ -14,6 +14,7 @@
 #include "dictionaryChecks.H"
 #include "addToRunTimeSelectionTable.H"
 #include "uniformDimensionedFields.H"
+#include "verticalModes.H"
 #include "forces.H"
 #include "volFields.H"
 
@@ -116,6 +117,7 @@ Foam::rigidLidMotionSolver::rigidLidMotionSolver
     rhoInf_(1),
     Q0_(iceDEMChecks::rotationTensor(coeffDict(), "orientation")),
     curTimeIndex_(-1),
+    verticalModesChecked_(false),
     flowForce_(Zero),
     flowMoment_(Zero),
     forceEvents_(label(-1))
@@ -276,6 +278,13 @@ void Foam::rigidLidMotionSolver::solve()
         t.deltaTValue(),
         t.deltaT0Value()
     );
+
+    // The restraints recorded their stiffness in this first update
+    if (!verticalModesChecked_)
+    {
+        verticalModesChecked_ = true;
+        checkVerticalModesResolved(motion_, coeffDict());
+    }
 }
 
 

@@ -11,6 +11,7 @@
 
 #include "structureMotion.H"
 #include "uniformDimensionedFields.H"
+#include "verticalModes.H"
 #include "completeTime.H"
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
@@ -52,7 +53,8 @@ Foam::structureMotion::structureMotion(const Time& runTime)
         )
     ),
     motion_(),
-    curTimeIndex_(-1)
+    curTimeIndex_(-1),
+    verticalModesChecked_(false)
 {
     IOobject stateIO
     (
@@ -109,6 +111,13 @@ void Foam::structureMotion::step(const vector& force, const vector& moment)
         runTime_.deltaTValue(),
         runTime_.deltaT0Value()
     );
+
+    // The restraints recorded their stiffness in this first update
+    if (!verticalModesChecked_)
+    {
+        verticalModesChecked_ = true;
+        checkVerticalModesResolved(motion_(), coeffs());
+    }
 }
 
 
