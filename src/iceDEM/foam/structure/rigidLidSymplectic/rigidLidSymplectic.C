@@ -56,6 +56,34 @@ Foam::sixDoFSolvers::rigidLidSymplectic::readMode
 }
 
 
+void Foam::sixDoFSolvers::rigidLidSymplectic::checkDampingResolved
+(
+    const word& name,
+    const modeCoeffs& c,
+    const scalar inertia,
+    const scalar u,
+    const scalar deltaT
+) const
+{
+    const scalar b = c.rate(u, inertia);
+    if (b*deltaT < 2)
+    {
+        return;
+    }
+    FatalIOErrorInFunction(dict_)
+        << "Entries 'linearDamping' and 'quadraticDamping' of " << name
+        << " in " << dict_.name() << ": at the " << name << " velocity "
+        << u << " the damping rate (B + Q|u|)/(m + A) = " << b << " 1/s"
+        << " (B " << c.linearDamping << ", Q " << c.quadraticDamping
+        << ", m " << inertia << ", A " << c.addedMass << ") times the"
+        << " structure's step deltaT = " << deltaT << " s (system/"
+        << "controlDict) is " << b*deltaT << ", at least 2: the explicit"
+        << " damping reverses and amplifies the motion at every step."
+        << " Reduce deltaT below " << 2/b << " s or the damping." << nl
+        << exit(FatalIOError);
+}
+
+
 Foam::sixDoFSolvers::rigidLidSymplectic::rigidLidSymplectic
 (
     const dictionary& dict,
@@ -103,6 +131,10 @@ void Foam::sixDoFSolvers::rigidLidSymplectic::solve
     // the global frame, roll and pitch about the body axes
     const diagTensor& I = body_.momentOfInertia();
     const vector omegaBody(pi().x()/I.xx(), pi().y()/I.yy(), pi().z()/I.zz());
+
+    checkDampingResolved("heave", heave_, body_.mass(), v().z(), deltaT);
+    checkDampingResolved("roll", roll_, I.xx(), omegaBody.x(), deltaT);
+    checkDampingResolved("pitch", pitch_, I.yy(), omegaBody.y(), deltaT);
 
     const vector fDamp(0, 0, heave_.damping(v().z()));
     const vector tauDampBody
