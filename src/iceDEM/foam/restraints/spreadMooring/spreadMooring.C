@@ -12,7 +12,7 @@
 #include "spreadMooring.H"
 #include "motionConstraints.H"
 #include "verticalModes.H"
-#include "IOField.H"
+#include "timeRegistry.H"
 #include "addToRunTimeSelectionTable.H"
 #include "caseEntries.H"
 #include "sixDoFRigidBodyMotion.H"
@@ -264,6 +264,32 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
 
 
 Foam::tensor
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::lineStiffness
+(
+    const sixDoFRigidBodyMotion& motion,
+    const label i,
+    const bool everyLineTaut,
+    point& fairlead,
+    vector& force
+) const
+{
+    fairlead = motion.transform(fairleads_[i]);
+    const vector r = fairlead - anchors_[i];
+    const scalar L = mag(r);
+    const vector e = r/(L + VSMALL);
+    const scalar T = stiffness_[i]*(L - restLength_[i]);
+    force = -max(T, scalar(0))*e;
+    if (!(T > 0 || everyLineTaut))
+    {
+        return Zero;
+    }
+    return
+        stiffness_[i]*sqr(e)
+      + (max(T, scalar(0))/L)*(tensor::I - sqr(e));
+}
+
+
+Foam::tensor
 Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 (
     const sixDoFRigidBodyMotion& motion,
@@ -271,19 +297,11 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 ) const
 {
     tensor K(Zero);
+    point f;
+    vector F;
     forAll(anchors_, i)
     {
-        const point f = motion.transform(fairleads_[i]);
-        const vector r = f - anchors_[i];
-        const scalar L = mag(r);
-        const vector e = r/(L + VSMALL);
-        const scalar T = stiffness_[i]*(L - restLength_[i]);
-        if (T > 0 || everyLineTaut)
-        {
-            K +=
-                stiffness_[i]*sqr(e)
-              + (max(T, scalar(0))/L)*(tensor::I - sqr(e));
-        }
+        K += lineStiffness(motion, i, everyLineTaut, f, F);
     }
     return K;
 }
@@ -299,19 +317,17 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalStiffness
     const vector ez(0, 0, 1);
     const FixedList<vector, 2> axes({vector(1, 0, 0), vector(0, 1, 0)});
     vector C(Zero);
+    point f;
+    vector F;
     forAll(anchors_, i)
     {
-        const point f = motion.transform(fairleads_[i]);
-        const vector r = f - anchors_[i];
-        const scalar L = mag(r);
-        const vector e = r/(L + VSMALL);
-        const scalar T = max(stiffness_[i]*(L - restLength_[i]), scalar(0));
-        const tensor K = stiffness_[i]*sqr(e) + (T/L)*(tensor::I - sqr(e));
+        const tensor K = lineStiffness(motion, i, true, f, F);
         const vector arm = f - G;
-        const vector F = -T*e;
         C.x() += ez & K & ez;
         for (label k = 0; k < 2; ++k)
         {
+            // The fairlead's displacement by a unit rotation about a, and
+            // the moment of the tension turning with the hull
             const vector& a = axes[k];
             const vector df = a ^ arm;
             C[k + 1] += (df & K & df) + (arm & F) - (a & arm)*(a & F);
@@ -411,30 +427,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
 
     // The tensions on the Time database for function objects
     // (iceLoadStatistics): an unwritten scalar field '<restraint>:tensions'
-    {
-        const word key(name_ + ":tensions");
-        if (runTime.foundObject<IOField<scalar>>(key))
-        {
-            runTime.lookupObjectRef<IOField<scalar>>(key) = T;
-        }
-        else
-        {
-            IOField<scalar>* reg = new IOField<scalar>
-            (
-                IOobject
-                (
-                    key,
-                    runTime.timeName(),
-                    runTime,
-                    IOobject::NO_READ,
-                    IOobject::NO_WRITE,
-                    true
-                ),
-                T
-            );
-            reg->store();
-        }
-    }
+    storeOnTime(runTime, name_ + ":tensions", T);
 
     // Output: one row per time step, the last evaluation of the step
     if (!file_.valid())

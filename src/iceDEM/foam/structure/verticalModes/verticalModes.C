@@ -10,6 +10,7 @@
 
 #include "verticalModes.H"
 #include "motionConstraints.H"
+#include "timeRegistry.H"
 #include "IOField.H"
 #include "mathematicalConstants.H"
 
@@ -38,27 +39,12 @@ void Foam::addVerticalStiffness
     const vector& heaveRollPitch
 )
 {
-    const word key(stiffnessPrefix + restraint);
-    const scalarField C({heaveRollPitch.x(), heaveRollPitch.y(), heaveRollPitch.z()});
-    if (runTime.foundObject<IOField<scalar>>(key))
-    {
-        runTime.lookupObjectRef<IOField<scalar>>(key) = C;
-        return;
-    }
-    IOField<scalar>* reg = new IOField<scalar>
+    storeOnTime
     (
-        IOobject
-        (
-            key,
-            runTime.timeName(),
-            runTime,
-            IOobject::NO_READ,
-            IOobject::NO_WRITE,
-            true
-        ),
-        C
+        runTime,
+        stiffnessPrefix + restraint,
+        scalarField({heaveRollPitch.x(), heaveRollPitch.y(), heaveRollPitch.z()})
     );
-    reg->store();
 }
 
 
