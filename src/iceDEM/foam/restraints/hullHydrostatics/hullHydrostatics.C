@@ -106,7 +106,7 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::check
             << exit(FatalIOError);
     }
 
-    addVerticalStiffness(motion.time(), name_, verticalStiffness(motion));
+    addVerticalModes(motion.time(), name_, verticalStiffness(motion), Zero);
 }
 
 

@@ -21,6 +21,8 @@
 #include "unitConversion.H"
 #include "postProcessingFile.H"
 
+#include <cmath>
+
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * * //
 
 namespace Foam
@@ -270,13 +272,14 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::lineStiffness
     const label i,
     const bool everyLineTaut,
     point& fairlead,
+    vector& e,
     vector& force
 ) const
 {
     fairlead = motion.transform(fairleads_[i]);
     const vector r = fairlead - anchors_[i];
     const scalar L = mag(r);
-    const vector e = r/(L + VSMALL);
+    e = r/(L + VSMALL);
     const scalar T = stiffness_[i]*(L - restLength_[i]);
     force = -max(T, scalar(0))*e;
     if (!(T > 0 || everyLineTaut))
@@ -298,42 +301,63 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 {
     tensor K(Zero);
     point f;
-    vector F;
+    vector e, F;
     forAll(anchors_, i)
     {
-        K += lineStiffness(motion, i, everyLineTaut, f, F);
+        K += lineStiffness(motion, i, everyLineTaut, f, e, F);
     }
     return K;
 }
 
 
-Foam::vector
-Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalStiffness
+Foam::tensor
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::dampingMatrix
 (
     const sixDoFRigidBodyMotion& motion
+) const
+{
+    tensor D(Zero);
+    point f;
+    vector e, F;
+    forAll(anchors_, i)
+    {
+        lineStiffness(motion, i, true, f, e, F);
+        D += damping_[i]*tensor(sqr(e));
+    }
+    return D;
+}
+
+
+void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalModes
+(
+    const sixDoFRigidBodyMotion& motion,
+    vector& stiffness,
+    vector& damping
 ) const
 {
     const point G = motion.centreOfMass();
     const vector ez(0, 0, 1);
     const FixedList<vector, 2> axes({vector(1, 0, 0), vector(0, 1, 0)});
-    vector C(Zero);
+    stiffness = Zero;
+    damping = Zero;
     point f;
-    vector F;
+    vector e, F;
     forAll(anchors_, i)
     {
-        const tensor K = lineStiffness(motion, i, true, f, F);
+        const tensor K = lineStiffness(motion, i, true, f, e, F);
         const vector arm = f - G;
-        C.x() += ez & K & ez;
+        stiffness.x() += ez & K & ez;
+        damping.x() += damping_[i]*sqr(e & ez);
         for (label k = 0; k < 2; ++k)
         {
             // The fairlead's displacement by a unit rotation about a, and
             // the moment of the tension turning with the hull
             const vector& a = axes[k];
             const vector df = a ^ arm;
-            C[k + 1] += (df & K & df) + (arm & F) - (a & arm)*(a & F);
+            stiffness[k + 1] += (df & K & df) + (arm & F) - (a & arm)*(a & F);
+            damping[k + 1] += damping_[i]*sqr(e & df);
         }
     }
-    return C;
 }
 
 
@@ -347,38 +371,50 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
     // meets this stiffness), in the free horizontal directions (the
     // constraints' projection; heave is left out: it has its own added
     // mass and hydrostatics); its largest eigenvalue over the mass without
-    // added mass (the fluid's would lower the frequency): a bound from above
-    const tensor K(stiffnessMatrix(motion, true));
+    // added mass (the fluid's would lower the frequency): a bound from above.
+    // The same for the lines' damping, explicit at the half-step velocity
     const tensor C(translationConstraints(motion));
-    const tensor Kf(C & K & C);
-    const scalar a = Kf.xx(), b = 0.5*(Kf.xy() + Kf.yx()), d = Kf.yy();
-    const scalar kMax =
-        0.5*(a + d) + Foam::sqrt(sqr(0.5*(a - d)) + sqr(b));
-    if (!(kMax > 0))
+    const auto largestHorizontal = [&C](const tensor& T)
+    {
+        const tensor Tf(C & T & C);
+        const scalar a = Tf.xx(), b = 0.5*(Tf.xy() + Tf.yx()), d = Tf.yy();
+        return 0.5*(a + d) + Foam::sqrt(sqr(0.5*(a - d)) + sqr(b));
+    };
+    const scalar kMax = largestHorizontal(stiffnessMatrix(motion, true));
+    const scalar dMax = largestHorizontal(dampingMatrix(motion));
+    if (!(kMax > 0) && !(dMax > 0))
     {
         return;
     }
-    const scalar omega = Foam::sqrt(kMax/motion.mass());
+    const scalar M = motion.mass();
+    const scalar omega = Foam::sqrt(max(kMax, scalar(0))/M);
+    const scalar b = max(dMax, scalar(0))/M;
     const scalar dt = motion.time().deltaTValue();
-    const scalar period = constant::mathematical::twoPi/omega;
+    const scalar period =
+        omega > 0 ? constant::mathematical::twoPi/omega : GREAT;
     Info<< "    shortest horizontal period 2 pi sqrt(M/K) = " << period
         << " s: " << period/dt << " structure steps (deltaT " << dt
-        << " s)" << endl;
+        << " s); the lines' damping rate D/M " << b << " 1/s" << endl;
 
     // The structure's integrators (OpenFOAM's symplectic, rigidLidSymplectic)
-    // are stable for omega deltaT < 2 only: beyond, the motion grows without
+    // are stable for (omega deltaT)^2 + 2 b deltaT < 4 only (omega deltaT < 2
+    // without damping; verticalModes.H): beyond, the motion grows without
     // bound (a floating point exception after some steps)
-    if (omega*dt >= 2)
+    const scalar bound = sqr(omega*dt) + 2*b*dt;
+    if (bound >= 4)
     {
+        const scalar dtMax = 4/(b + std::hypot(b, 2*omega));
         FatalIOErrorInFunction(coeffDict())
             << "Entry 'stiffness' of restraint " << name_ << " in "
             << coeffDict().name() << ": the lines' horizontal stiffness "
-            << kMax << " N/m and the structure's mass " << motion.mass()
-            << " kg give a period 2 pi sqrt(M/K) = " << period << " s, which"
-            << " the structure's step deltaT = " << dt << " s (system/"
-            << "controlDict) does not resolve: the motion is stable for"
-            << " deltaT < period/pi = " << period/constant::mathematical::pi
-            << " s only. Reduce deltaT or the stiffness." << nl
+            << kMax << " N/m (period 2 pi sqrt(M/K) = " << period << " s),"
+            << " their damping " << dMax << " N s/m (entry 'damping') and"
+            << " the structure's mass " << M << " kg give (omega deltaT)^2"
+            << " + 2 (D/M) deltaT = " << bound << " at the structure's step"
+            << " deltaT = " << dt << " s (system/controlDict): the motion is"
+            << " stable below 4 only (deltaT < period/pi without damping)."
+            << " Reduce deltaT below " << dtMax << " s, or the stiffness"
+            << " or the damping." << nl
             << exit(FatalIOError);
     }
 }
@@ -406,7 +442,9 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
               *Foam::sqrt(motion.mass()/max(K.xx(), VSMALL))
             << " s" << endl;
         checkPeriodResolved(motion);
-        addVerticalStiffness(runTime, name_, verticalStiffness(motion));
+        vector stiffness, damping;
+        verticalModes(motion, stiffness, damping);
+        addVerticalModes(runTime, name_, stiffness, damping);
     }
 
     const scalarField T(tensions(motion));

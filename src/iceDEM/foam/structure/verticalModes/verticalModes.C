@@ -23,7 +23,7 @@ namespace
 
 using namespace Foam;
 
-const word stiffnessPrefix("verticalStiffness:");
+const word modesPrefix("verticalModes:");
 
 const FixedList<word, 3> modeNames({"heave", "roll", "pitch"});
 
@@ -32,18 +32,23 @@ const FixedList<word, 3> modeNames({"heave", "roll", "pitch"});
 
 // * * * * * * * * * * * * * * * * Functions  * * * * * * * * * * * * * * * //
 
-void Foam::addVerticalStiffness
+void Foam::addVerticalModes
 (
     const Time& runTime,
     const word& restraint,
-    const vector& heaveRollPitch
+    const vector& stiffness,
+    const vector& damping
 )
 {
     storeOnTime
     (
         runTime,
-        stiffnessPrefix + restraint,
-        scalarField({heaveRollPitch.x(), heaveRollPitch.y(), heaveRollPitch.z()})
+        modesPrefix + restraint,
+        scalarField
+        ({
+            stiffness.x(), stiffness.y(), stiffness.z(),
+            damping.x(), damping.y(), damping.z()
+        })
     );
 }
 
@@ -56,20 +61,21 @@ void Foam::checkVerticalModesResolved
 {
     const Time& runTime = motion.time();
 
-    // The restraints' stiffness, summed; none recorded: nothing holds the
-    // vertical modes elastically, nothing to resolve
-    FixedList<scalar, 3> C(Zero);
+    // The restraints' stiffness and damping, summed; none recorded:
+    // nothing holds the vertical modes, nothing to resolve
+    FixedList<scalar, 3> C(Zero), B(Zero);
     wordList from;
     const auto recorded = runTime.lookupClass<IOField<scalar>>();
     forAllConstIters(recorded, iter)
     {
         const IOField<scalar>& c = **iter;
-        if (iter.key().startsWith(stiffnessPrefix) && c.size() == 3)
+        if (iter.key().startsWith(modesPrefix) && c.size() == 6)
         {
-            from.append(iter.key().substr(stiffnessPrefix.size()));
+            from.append(iter.key().substr(modesPrefix.size()));
             for (label i = 0; i < 3; ++i)
             {
                 C[i] += c[i];
+                B[i] += c[i + 3];
             }
         }
     }
@@ -86,7 +92,7 @@ void Foam::checkVerticalModesResolved
 
     // The solver's added mass and damping (rigidLidSymplectic; the stock
     // integrators have neither); their ranges are the solver's checks
-    FixedList<scalar, 3> A(Zero), B(Zero);
+    FixedList<scalar, 3> A(Zero);
     const dictionary* solver = coeffs.findDict("solver");
     if (solver && solver->lookupOrDefault<word>("type", "") == "rigidLidSymplectic")
     {
@@ -95,7 +101,7 @@ void Foam::checkVerticalModesResolved
             if (const dictionary* mode = solver->findDict(modeNames[i]))
             {
                 A[i] = mode->lookupOrDefault<scalar>("addedMass", 0);
-                B[i] = mode->lookupOrDefault<scalar>("linearDamping", 0);
+                B[i] += mode->lookupOrDefault<scalar>("linearDamping", 0);
             }
         }
     }
@@ -166,12 +172,12 @@ void Foam::checkVerticalModesResolved
             << modeNames[i] << ": stiffness C = " << C[i] << ' ' << units[i]
             << " (restraints " << names << " in " << coeffs.name()
             << "), inertia m = " << inertia[i] << ", added mass A = " << A[i]
-            << " and linear damping B = " << B[i] << " (the solver's "
-            << modeNames[i] << " entries). The symplectic step is stable only"
+            << " and linear damping B = " << B[i] << " (the restraints' and"
+            << " the solver's " << modeNames[i] << " entries). The symplectic step is stable only"
             << " for (omega deltaT)^2 + 2 (B/(m + A)) deltaT < 4, omega^2 ="
             << " C/(m + A); here " << bound << ". Reduce deltaT below "
             << dtMax << " s"
-            << (B[i] > 0 ? word(" (or the linearDamping of " + modeNames[i] + ")") : word())
+            << (B[i] > 0 ? word(" (or the damping: the lines' or the solver's linearDamping of " + modeNames[i] + ")") : word())
             << '.' << nl
             << exit(FatalIOError);
     }
