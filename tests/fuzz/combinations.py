@@ -36,7 +36,7 @@ can be made again.
       DEM's step, K, contact model, current, wind (uniform or table), floe
       damping, periodic in x and y, in x, none or inflow/outflow; the 2 m
       box or a random facetedHull inside it, free or held to the plane,
-      moored by 3-12 lines of 1e3-1e8 N/m, with wind on it; the
+      moored by 3-12 lines of 1e3-1e8 N/m damped by 10-1e5 N s/m, with wind on it; the
       structure's step (0.01-0.5 s); the load statistics and clearance
       function objects.
       2 s with 1 and 2 threads and restarted at 1 s: the DEM state, the
@@ -625,6 +625,7 @@ def noflowMotion(rng):
     p = re.sub(r'nLines\s+[^;]+;', 'nLines %d;' % rng.choice([3, 4, 8, 12]), p)
     p = re.sub(r'stiffness\s+[^;]+;', 'stiffness %g;' % rng.choice([1e3, 1e4, 1e5, 1e8]), p)
     p = re.sub(r'startAngle\s+[^;]+;', 'startAngle %g;' % rng.uniform(0, 90), p)
+    p = re.sub(r'\n(\s+)damping\s+[^;]+;', r'\n\1damping %g;' % rng.choice([10, 1e3, 1e5]), p)
     p = re.sub(r'(windLoad;\s*type\s+uniform;\s*)velocity\s+[^;]+;',
                r'\1velocity (%g %g 0);' % (rng.uniform(-20, 20), rng.uniform(-20, 20)), p)
     if rng.random() < 0.5:
