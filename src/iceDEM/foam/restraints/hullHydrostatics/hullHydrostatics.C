@@ -148,12 +148,10 @@ Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::verticalStiffness
     const scalar dz = 1e-6*mag(max(points0_) - min(points0_));
     const scalar da = 1e-6;
     const vector ex(1, 0, 0), ey(0, 1, 0);
-    return vector
-    (
-        -(restoring(raised(dz)).x() - restoring(raised(-dz)).x())/(2*dz),
-        -(restoring(rotated(ex, da)).y() - restoring(rotated(ex, -da)).y())/(2*da),
-        -(restoring(rotated(ey, da)).z() - restoring(rotated(ey, -da)).z())/(2*da)
-    );
+    const vector up(restoring(raised(dz)) - restoring(raised(-dz)));
+    const vector roll(restoring(rotated(ex, da)) - restoring(rotated(ex, -da)));
+    const vector pitch(restoring(rotated(ey, da)) - restoring(rotated(ey, -da)));
+    return vector(-up.x()/(2*dz), -roll.y()/(2*da), -pitch.z()/(2*da));
 }
 
 

@@ -94,7 +94,11 @@ void Foam::checkVerticalModesResolved
     // integrators have neither); their ranges are the solver's checks
     FixedList<scalar, 3> A(Zero);
     const dictionary* solver = coeffs.findDict("solver");
-    if (solver && solver->lookupOrDefault<word>("type", "") == "rigidLidSymplectic")
+    if
+    (
+        solver
+     && solver->lookupOrDefault<word>("type", "") == "rigidLidSymplectic"
+    )
     {
         for (label i = 0; i < 3; ++i)
         {
@@ -116,7 +120,10 @@ void Foam::checkVerticalModesResolved
     const FixedList<scalar, 3> inertia({motion.mass(), J.xx(), J.yy()});
     const tensor Ct(translationConstraints(motion));
     const tensor Cr(rotationConstraints(motion));
-    const FixedList<bool, 3> free({Ct.zz() > 0.5, Cr.xx() > 0.5, Cr.yy() > 0.5});
+    const FixedList<bool, 3> free
+    ({
+        Ct.zz() > 0.5, Cr.xx() > 0.5, Cr.yy() > 0.5
+    });
     const FixedList<word, 3> units({"N/m", "N m/rad", "N m/rad"});
 
     const scalar dt = runTime.deltaTValue();
@@ -132,7 +139,8 @@ void Foam::checkVerticalModesResolved
         else if (C[i] > 0)
         {
             const scalar T =
-                constant::mathematical::twoPi*Foam::sqrt((inertia[i] + A[i])/C[i]);
+                constant::mathematical::twoPi
+               *Foam::sqrt((inertia[i] + A[i])/C[i]);
             Info<< ' ' << T << " s (" << T/dt << " steps);";
         }
         else
@@ -151,9 +159,10 @@ void Foam::checkVerticalModesResolved
         if (!(C[i] > 0))
         {
             WarningInFunction
-                << "The structure's " << modeNames[i] << " stiffness (" << names
-                << ") is " << C[i] << ' ' << units[i] << ": it is not stable"
-                << " in " << modeNames[i] << " (it capsizes or sinks)" << endl;
+                << "The structure's " << modeNames[i] << " stiffness ("
+                << names << ") is " << C[i] << ' ' << units[i] << ": it is"
+                << " not stable in " << modeNames[i] << " (it capsizes or"
+                << " sinks)" << endl;
         }
         const scalar m = inertia[i] + A[i];
         const scalar omega2 = max(C[i], scalar(0))/m;
@@ -173,13 +182,17 @@ void Foam::checkVerticalModesResolved
             << " (restraints " << names << " in " << coeffs.name()
             << "), inertia m = " << inertia[i] << ", added mass A = " << A[i]
             << " and linear damping B = " << B[i] << " (the restraints' and"
-            << " the solver's " << modeNames[i] << " entries). The symplectic step is stable only"
-            << " for (omega deltaT)^2 + 2 (B/(m + A)) deltaT < 4, omega^2 ="
-            << " C/(m + A); here " << bound << ". Reduce deltaT below "
-            << dtMax << " s"
-            << (B[i] > 0 ? word(" (or the damping: the lines' or the solver's linearDamping of " + modeNames[i] + ")") : word())
-            << '.' << nl
-            << exit(FatalIOError);
+            << " the solver's " << modeNames[i] << " entries). The symplectic"
+            << " step is stable only for (omega deltaT)^2 + 2 (B/(m + A))"
+            << " deltaT < 4, omega^2 = C/(m + A); here " << bound
+            << ". Reduce deltaT below " << dtMax << " s";
+        if (B[i] > 0)
+        {
+            FatalIOError
+                << " (or the damping: the lines' or the solver's"
+                << " linearDamping of " << modeNames[i] << ")";
+        }
+        FatalIOError<< '.' << nl << exit(FatalIOError);
     }
 }
 
