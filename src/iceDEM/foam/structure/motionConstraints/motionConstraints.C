@@ -58,4 +58,19 @@ Foam::tensor Foam::rotationConstraints(const sixDoFRigidBodyMotion& motion)
 }
 
 
+Foam::FixedList<bool, 3> Foam::freeVerticalModes
+(
+    const sixDoFRigidBodyMotion& motion
+)
+{
+    const constraintTensors c(motion);
+    return FixedList<bool, 3>
+    ({
+        mag(c.tConstraints() & vector(0, 0, 1)) > 0,
+        mag(c.rConstraints() & vector(1, 0, 0)) > 0,
+        mag(c.rConstraints() & vector(0, 1, 0)) > 0
+    });
+}
+
+
 // ************************************************************************* //

@@ -16,11 +16,8 @@
 
 void Foam::checkStockMotionUnderLid(const sixDoFRigidBodyMotionSolver& solver)
 {
-    const tensor t(translationConstraints(solver.motion()));
-    const tensor r(rotationConstraints(solver.motion()));
-    const bool heave = mag(t & vector(0, 0, 1)) > 0;
-    const bool roll = mag(r & vector(1, 0, 0)) > 0;
-    const bool pitch = mag(r & vector(0, 1, 0)) > 0;
+    const FixedList<bool, 3> free(freeVerticalModes(solver.motion()));
+    const bool heave = free[0], roll = free[1], pitch = free[2];
     if (!(heave || roll || pitch))
     {
         return;

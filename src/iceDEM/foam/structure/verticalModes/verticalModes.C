@@ -10,6 +10,7 @@
 
 #include "verticalModes.H"
 #include "motionConstraints.H"
+#include "rigidLidSymplectic.H"
 #include "timeRegistry.H"
 #include "IOField.H"
 #include "mathematicalConstants.H"
@@ -91,22 +92,25 @@ void Foam::checkVerticalModesResolved
     }
 
     // The solver's added mass and damping (rigidLidSymplectic; the stock
-    // integrators have neither); their ranges are the solver's checks
+    // integrators have neither), read by the solver's own reader
     FixedList<scalar, 3> A(Zero);
     const dictionary* solver = coeffs.findDict("solver");
     if
     (
         solver
-     && solver->lookupOrDefault<word>("type", "") == "rigidLidSymplectic"
+     && solver->lookupOrDefault<word>("type", "")
+     == sixDoFSolvers::rigidLidSymplectic::typeName
     )
     {
         for (label i = 0; i < 3; ++i)
         {
-            if (const dictionary* mode = solver->findDict(modeNames[i]))
-            {
-                A[i] = mode->lookupOrDefault<scalar>("addedMass", 0);
-                B[i] += mode->lookupOrDefault<scalar>("linearDamping", 0);
-            }
+            const sixDoFSolvers::rigidLidSymplectic::modeCoeffs mode =
+                sixDoFSolvers::rigidLidSymplectic::readMode
+                (
+                    *solver, modeNames[i]
+                );
+            A[i] = mode.addedMass;
+            B[i] += mode.linearDamping;
         }
     }
 
@@ -118,12 +122,7 @@ void Foam::checkVerticalModesResolved
         Q & tensor(I.xx(), 0, 0, 0, I.yy(), 0, 0, 0, I.zz()) & Q.T()
     );
     const FixedList<scalar, 3> inertia({motion.mass(), J.xx(), J.yy()});
-    const tensor Ct(translationConstraints(motion));
-    const tensor Cr(rotationConstraints(motion));
-    const FixedList<bool, 3> free
-    ({
-        Ct.zz() > 0.5, Cr.xx() > 0.5, Cr.yy() > 0.5
-    });
+    const FixedList<bool, 3> free(freeVerticalModes(motion));
     const FixedList<word, 3> units({"N/m", "N m/rad", "N m/rad"});
 
     const scalar dt = runTime.deltaTValue();
