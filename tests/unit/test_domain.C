@@ -533,6 +533,90 @@ TEST(periodic, badSizesStructureAndWallsAreErrors)
 }
 
 
+TEST(periodic, aTurningStructureStopsTheRunWhereItsRestartWould)
+{
+    // A prescribed 20 m x 20 m box (a moored hull) turning about the
+    // vertical in a 30 m periodic box: its extent along x, 20 (cos + sin)
+    // + 2 r, fits at yaw 0 and not at 45 degrees. The check used to run
+    // only at a start, so the run went on with the turned structure and a
+    // restart from it stopped (tests/fuzz noflow 634): now the step whose
+    // pose does not fit stops, and a restart there stops as well
+    const double L = 30, half = 10, r = 0.05;
+    auto world = [&](double yaw)
+    {
+        auto w = std::make_unique<World>(noGravity());
+        const int mat = w->addMaterial(ice());
+        const int shape = w->addShape(DilatedShape(ConvexPolyhedron::prism(outline(), -0.4, 0.8), 0.1));
+        w->addBody(shape, mat, Vec3(2, 2, 0));
+        const int steel = w->addMaterial(test::steel());
+        const int box = w->addShape(DilatedShape(ConvexPolyhedron::box(Vec3(half, half, 1)), r));
+        w->addBody
+        (
+            box, steel, Vec3(0.5*L, 0.5*L, 0),
+            Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())),
+            Vec3::Zero(), Vec3::Zero(), BodyMotion::prescribed
+        );
+        w->setDomain(periodicBox(0, L, 0, L));
+        return w;
+    };
+    auto entryOf = [](World& w)
+    {
+        try { w.initialise(); }
+        catch (const Error& e) { return e.entry(); }
+        return std::string("no error");
+    };
+    const double degree = M_PI/180;
+
+    auto run = world(0);
+    ASSERT_EQ(entryOf(*run), "no error");
+    // Its horizontal diameter does not fit: warned at the start
+    bool warned = false;
+    for (const std::string& m : run->warnings())
+    {
+        warned = warned || m.find("horizontal diameter") != std::string::npos;
+    }
+    EXPECT_TRUE(warned);
+
+    // The step at which the extent plus twice the reach of a pair (2 R +
+    // skin, the skin the smallest dilation radius) first exceeds L
+    const double reach = 2*run->shapeOf(0).boundingRadius() + r;
+    int expected = -1;
+    for (int k = 1; k <= 45 && expected < 0; ++k)
+    {
+        const double extent = 2*half*(std::cos(k*degree) + std::sin(k*degree)) + 2*r;
+        if (extent + 2*reach > L) expected = k;
+    }
+    ASSERT_GT(expected, 1);
+
+    int stopped = -1;
+    for (int k = 1; k <= 45 && stopped < 0; ++k)
+    {
+        run->setPrescribedState
+        (
+            1, Vec3(0.5*L, 0.5*L, 0), Quat(Eigen::AngleAxisd(k*degree, Vec3::UnitZ())),
+            Vec3::Zero(), Vec3(0, 0, degree/run->settings().timeStep)
+        );
+        try
+        {
+            run->step();
+        }
+        catch (const Error& e)
+        {
+            EXPECT_EQ(e.entry(), "domain");
+            EXPECT_NE(std::string(e.what()).find("present pose"), std::string::npos) << e.what();
+            stopped = k;
+        }
+    }
+    EXPECT_EQ(stopped, expected);
+
+    // A restart from the last pose that ran runs; one from the next stops
+    auto before = world((expected - 1)*degree);
+    EXPECT_EQ(entryOf(*before), "no error");
+    auto at = world(expected*degree);
+    EXPECT_EQ(entryOf(*at), "domain");
+}
+
+
 TEST(periodic, voronoiFieldFillsThePeriodicDomain)
 {
     // createIceField's region equal to the periodic bounds: the floes of

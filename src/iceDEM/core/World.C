@@ -321,7 +321,7 @@ void World::initialise(bool restart)
         {
             if (b.isFree()) domain_->wrap(b.x);
         }
-        domain_->check(*this, skin);
+        domain_->check(*this, skin, warnings_);
         wrapped_.assign(bodies_.size(), Domain::noImage);
     }
 

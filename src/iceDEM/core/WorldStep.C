@@ -149,6 +149,12 @@ void World::stepBy(double dt)
     {
         joinInserted();
     }
+    // A prescribed structure was posed for this step: it must still fit
+    // the periodic domain (Domain::checkStructure)
+    if (domain_ && domain_->structureMoves())
+    {
+        domain_->checkStructure(*this);
+    }
     resizeBodyFrames();
     ++evaluation_;
     preparePairs();

@@ -102,75 +102,98 @@ void Domain::ghosts
 }
 
 
-void Domain::check(const World& world, double skin) const
+void Domain::check
+(
+    const World& world,
+    double skin,
+    std::vector<std::string>& warnings
+)
 {
     if (!active()) return;
     const std::vector<Body>& bodies = world.bodies();
 
-    // Reach of a pair of the largest free bodies
+    // Reach of a pair of the largest free bodies; the structure's bodies
     double rMax = 0;
+    structure_.clear();
+    structureMoves_ = false;
     for (std::size_t i = 0; i < bodies.size(); ++i)
     {
         if (bodies[i].isFree())
         {
             rMax = std::max(rMax, world.shapeOf(int(i)).boundingRadius());
         }
-    }
-    const double reach = 2*rMax + skin;
-
-    // Extent of the bodies that do not move freely (the structure)
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
-    Vec3 hi = -lo;
-    bool structure = false;
-    for (std::size_t i = 0; i < bodies.size(); ++i)
-    {
-        const Body& b = bodies[i];
-        if (b.isFree()) continue;
-        structure = true;
-        const DilatedShape& S = world.shapeOf(int(i));
-        const Mat3 R = b.rotation();
-        for (const Vec3& v : S.core().vertices())
+        else
         {
-            const Vec3 w = R*v + b.x;
-            lo = lo.cwiseMin(w - Vec3::Constant(S.radius()));
-            hi = hi.cwiseMax(w + Vec3::Constant(S.radius()));
+            structure_.push_back(int(i));
+            structureMoves_ =
+                structureMoves_ || bodies[i].motion == BodyMotion::prescribed;
         }
     }
+    reach_ = 2*rMax + skin;
 
     for (int d = 0; d < 2; ++d)
     {
         if (!settings_.periodic[d]) continue;
         const double L = length_[d];
-        if (L < 2*reach)
+        if (L < 2*reach_)
         {
             std::ostringstream msg;
             msg << "the periodic length in " << axisName(d) << " (" << L
                 << " m) is smaller than twice the reach of a pair of the"
-                << " largest floes, 2 (2 R + skin) = " << 2*reach << " m (R = "
+                << " largest floes, 2 (2 R + skin) = " << 2*reach_ << " m (R = "
                 << rMax << " m: largest bounding radius; skin " << skin
                 << " m): a floe would meet its own image. Enlarge the domain";
             throw Error(msg.str(), "domain");
         }
-        if (!structure) continue;
-        if (lo[d] < settings_.lo[d] || hi[d] > settings_.hi[d])
+    }
+
+    checkStructure(world);
+
+    // A moving structure's extent along x or y reaches at most its
+    // horizontal diameter as it turns about the vertical (the largest
+    // horizontal distance of two of its dilated vertices)
+    if (structureMoves_)
+    {
+        double diameter = 0;
+        for (std::size_t a = 0; a < structure_.size(); ++a)
         {
-            std::ostringstream msg;
-            msg << "the structure (the bodies that are not free) spans "
-                << axisName(d) << " = " << lo[d] << " .. " << hi[d]
-                << " m and crosses a periodic side of the domain ("
-                << settings_.lo[d] << " " << settings_.hi[d]
-                << "): it must lie inside the periodic bounds";
-            throw Error(msg.str(), "domain");
+            const int i = structure_[a];
+            const DilatedShape& Si = world.shapeOf(i);
+            const Mat3 Ri = bodies[i].rotation();
+            for (std::size_t b = a; b < structure_.size(); ++b)
+            {
+                const int j = structure_[b];
+                const DilatedShape& Sj = world.shapeOf(j);
+                const Mat3 Rj = bodies[j].rotation();
+                for (const Vec3& u : Si.core().vertices())
+                {
+                    const Vec3 wu = Ri*u + bodies[i].x;
+                    for (const Vec3& v : Sj.core().vertices())
+                    {
+                        const Vec3 wv = Rj*v + bodies[j].x;
+                        diameter = std::max
+                        (
+                            diameter,
+                            std::hypot(wu.x() - wv.x(), wu.y() - wv.y())
+                          + Si.radius() + Sj.radius()
+                        );
+                    }
+                }
+            }
         }
-        if (L < hi[d] - lo[d] + 2*reach)
+        for (int d = 0; d < 2; ++d)
         {
+            if (!settings_.periodic[d] || length_[d] >= diameter + 2*reach_) continue;
             std::ostringstream msg;
-            msg << "the periodic length in " << axisName(d) << " (" << L
-                << " m) is smaller than the structure's extent ("
-                << hi[d] - lo[d] << " m) plus twice the reach of a pair of"
-                << " floes (" << 2*reach << " m): a floe could touch the"
-                << " structure on both sides. Enlarge the domain";
-            throw Error(msg.str(), "domain");
+            msg << "the structure moves, and its horizontal diameter ("
+                << diameter << " m: its largest extent along "
+                << axisName(d) << " as it turns) plus twice the reach of a"
+                << " pair of floes (" << 2*reach_ << " m) exceeds the"
+                << " periodic length in " << axisName(d) << " ("
+                << length_[d] << " m): the run stops (entry 'domain') at"
+                << " the step where its extent no longer fits. Enlarge the"
+                << " domain to be safe";
+            warnings.push_back(msg.str());
         }
     }
 
@@ -187,6 +210,55 @@ void Domain::check(const World& world, double skin) const
                     << " the non-periodic directions";
                 throw Error(msg.str(), "domain");
             }
+        }
+    }
+}
+
+void Domain::checkStructure(const World& world) const
+{
+    if (structure_.empty()) return;
+    const std::vector<Body>& bodies = world.bodies();
+
+    // Extent of the bodies that do not move freely, at their present pose
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
+    Vec3 hi = -lo;
+    for (const int i : structure_)
+    {
+        const Body& b = bodies[i];
+        const DilatedShape& S = world.shapeOf(i);
+        const Mat3 R = b.rotation();
+        for (const Vec3& v : S.core().vertices())
+        {
+            const Vec3 w = R*v + b.x;
+            lo = lo.cwiseMin(w - Vec3::Constant(S.radius()));
+            hi = hi.cwiseMax(w + Vec3::Constant(S.radius()));
+        }
+    }
+
+    for (int d = 0; d < 2; ++d)
+    {
+        if (!settings_.periodic[d]) continue;
+        if (lo[d] < settings_.lo[d] || hi[d] > settings_.hi[d])
+        {
+            std::ostringstream msg;
+            msg << "the structure (the bodies that are not free) spans "
+                << axisName(d) << " = " << lo[d] << " .. " << hi[d]
+                << " m at its present pose and crosses a periodic side of"
+                << " the domain (" << settings_.lo[d] << " "
+                << settings_.hi[d] << "): it must lie inside the periodic"
+                << " bounds";
+            throw Error(msg.str(), "domain");
+        }
+        if (length_[d] < hi[d] - lo[d] + 2*reach_)
+        {
+            std::ostringstream msg;
+            msg << "the periodic length in " << axisName(d) << " ("
+                << length_[d] << " m) is smaller than the structure's extent ("
+                << hi[d] - lo[d] << " m at its present pose) plus twice the"
+                << " reach of a pair of floes (" << 2*reach_ << " m): a floe"
+                << " could touch the structure on both sides. Enlarge the"
+                << " domain";
+            throw Error(msg.str(), "domain");
         }
     }
 }
