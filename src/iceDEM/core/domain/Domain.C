@@ -214,6 +214,7 @@ void Domain::check
     }
 }
 
+
 void Domain::checkStructure(const World& world) const
 {
     if (structure_.empty()) return;
