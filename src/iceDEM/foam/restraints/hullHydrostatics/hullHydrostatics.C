@@ -105,8 +105,6 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::check
             << " in dynamicMeshDict." << nl
             << exit(FatalIOError);
     }
-
-    addVerticalModes(motion.time(), name_, verticalStiffness(motion), Zero);
 }
 
 
@@ -178,6 +176,9 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::restrain
     {
         check(motion);
     }
+    // The stiffness at every evaluation, at the pose it is made at (the
+    // structure's check of its vertical modes follows each step)
+    addVerticalModes(motion.time(), name_, verticalStiffness(motion), Zero);
 
     const vector g = gravity(motion.time(), sDoFRBMRCoeffs_);
     const floatingStructure::submergedPart sub = submerged(motion);

@@ -363,7 +363,8 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalModes
 
 void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
 (
-    const sixDoFRigidBodyMotion& motion
+    const sixDoFRigidBodyMotion& motion,
+    bool report
 ) const
 {
     // The stiffness with every line taut (a line slack now, on the side the
@@ -392,9 +393,12 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
     const scalar dt = motion.time().deltaTValue();
     const scalar period =
         omega > 0 ? constant::mathematical::twoPi/omega : GREAT;
-    Info<< "    shortest horizontal period 2 pi sqrt(M/K) = " << period
-        << " s: " << period/dt << " structure steps (deltaT " << dt
-        << " s); the lines' damping rate D/M " << b << " 1/s" << endl;
+    if (report)
+    {
+        Info<< "    shortest horizontal period 2 pi sqrt(M/K) = " << period
+            << " s: " << period/dt << " structure steps (deltaT " << dt
+            << " s); the lines' damping rate D/M " << b << " 1/s" << endl;
+    }
 
     // The structure's integrators (OpenFOAM's symplectic, rigidLidSymplectic)
     // are stable for (omega deltaT)^2 + 2 b deltaT < 4 only (omega deltaT < 2
@@ -411,7 +415,8 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::checkPeriodResolved
             << " their damping " << dMax << " N s/m (entry 'damping') and"
             << " the structure's mass " << M << " kg give (omega deltaT)^2"
             << " + 2 (D/M) deltaT = " << bound << " at the structure's step"
-            << " deltaT = " << dt << " s (system/controlDict): the motion is"
+            << " deltaT = " << dt << " s (system/controlDict) and its pose"
+            << " at time " << motion.time().timeName() << ": the motion is"
             << " stable below 4 only (deltaT < period/pi without damping)."
             << " Reduce deltaT below " << dtMax << " s, or the stiffness"
             << " or the damping." << nl
@@ -430,7 +435,8 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
 {
     const Time& runTime = motion.time();
 
-    if (!reported_)
+    const bool first = !reported_;
+    if (first)
     {
         reported_ = true;
         const tensor K = stiffnessMatrix(motion);
@@ -441,7 +447,12 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
             << constant::mathematical::twoPi
               *Foam::sqrt(motion.mass()/max(K.xx(), VSMALL))
             << " s" << endl;
-        checkPeriodResolved(motion);
+    }
+    // At every evaluation, at the pose it is made at: the lines stiffen as
+    // the structure drifts, and a check at the start only let a run go on
+    // that its own restart from a drifted pose refused
+    checkPeriodResolved(motion, first);
+    {
         vector stiffness, damping;
         verticalModes(motion, stiffness, damping);
         addVerticalModes(runTime, name_, stiffness, damping);

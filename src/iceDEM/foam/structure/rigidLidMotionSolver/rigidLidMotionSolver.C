@@ -279,12 +279,10 @@ void Foam::rigidLidMotionSolver::solve()
         t.deltaT0Value()
     );
 
-    // The restraints recorded their stiffness in this first update
-    if (!verticalModesChecked_)
-    {
-        verticalModesChecked_ = true;
-        checkVerticalModesResolved(motion_, coeffDict());
-    }
+    // The restraints recorded their stiffness in this update, at the pose
+    // it reached (verticalModes.H); the periods logged after the first
+    checkVerticalModesResolved(motion_, coeffDict(), !verticalModesChecked_);
+    verticalModesChecked_ = true;
 }
 
 

@@ -112,12 +112,10 @@ void Foam::structureMotion::step(const vector& force, const vector& moment)
         runTime_.deltaT0Value()
     );
 
-    // The restraints recorded their stiffness in this first update
-    if (!verticalModesChecked_)
-    {
-        verticalModesChecked_ = true;
-        checkVerticalModesResolved(motion_(), coeffs());
-    }
+    // The restraints recorded their stiffness in this update, at the pose
+    // it reached (verticalModes.H); the periods logged after the first
+    checkVerticalModesResolved(motion_(), coeffs(), !verticalModesChecked_);
+    verticalModesChecked_ = true;
 }
 
 

@@ -57,7 +57,8 @@ void Foam::addVerticalModes
 void Foam::checkVerticalModesResolved
 (
     const sixDoFRigidBodyMotion& motion,
-    const dictionary& coeffs
+    const dictionary& coeffs,
+    bool report
 )
 {
     const Time& runTime = motion.time();
@@ -126,28 +127,32 @@ void Foam::checkVerticalModesResolved
     const FixedList<word, 3> units({"N/m", "N m/rad", "N m/rad"});
 
     const scalar dt = runTime.deltaTValue();
-    Info<< "Structure: vertical modes' periods 2 pi sqrt((m + A)/C) (C from "
-        << names << ") at the structure's step " << dt << " s:";
-    for (label i = 0; i < 3; ++i)
+    if (report)
     {
-        Info<< ' ' << modeNames[i];
-        if (!free[i])
+        Info<< "Structure: vertical modes' periods 2 pi sqrt((m + A)/C) (C"
+            << " from " << names << ") at the structure's step " << dt
+            << " s:";
+        for (label i = 0; i < 3; ++i)
         {
-            Info<< " held;";
+            Info<< ' ' << modeNames[i];
+            if (!free[i])
+            {
+                Info<< " held;";
+            }
+            else if (C[i] > 0)
+            {
+                const scalar T =
+                    constant::mathematical::twoPi
+                   *Foam::sqrt((inertia[i] + A[i])/C[i]);
+                Info<< ' ' << T << " s (" << T/dt << " steps);";
+            }
+            else
+            {
+                Info<< " C = " << C[i] << ';';
+            }
         }
-        else if (C[i] > 0)
-        {
-            const scalar T =
-                constant::mathematical::twoPi
-               *Foam::sqrt((inertia[i] + A[i])/C[i]);
-            Info<< ' ' << T << " s (" << T/dt << " steps);";
-        }
-        else
-        {
-            Info<< " C = " << C[i] << ';';
-        }
+        Info<< endl;
     }
-    Info<< endl;
 
     for (label i = 0; i < 3; ++i)
     {
@@ -155,7 +160,7 @@ void Foam::checkVerticalModesResolved
         {
             continue;
         }
-        if (!(C[i] > 0))
+        if (report && !(C[i] > 0))
         {
             WarningInFunction
                 << "The structure's " << modeNames[i] << " stiffness ("
@@ -177,7 +182,8 @@ void Foam::checkVerticalModesResolved
         FatalIOErrorInFunction(runTime.controlDict())
             << "Entry 'deltaT' of " << runTime.controlDict().name()
             << ": the structure's step " << dt << " s does not resolve its "
-            << modeNames[i] << ": stiffness C = " << C[i] << ' ' << units[i]
+            << modeNames[i] << " at its pose at time " << runTime.timeName()
+            << ": stiffness C = " << C[i] << ' ' << units[i]
             << " (restraints " << names << " in " << coeffs.name()
             << "), inertia m = " << inertia[i] << ", added mass A = " << A[i]
             << " and linear damping B = " << B[i] << " (the restraints' and"
