@@ -154,31 +154,29 @@ void Domain::check
     // horizontal distance of two of its dilated vertices)
     if (structureMoves_)
     {
-        double diameter = 0;
-        for (std::size_t a = 0; a < structure_.size(); ++a)
+        // The structure's core vertices in plan and their dilation radii
+        std::vector<Vec3> plan;
+        for (const int i : structure_)
         {
-            const int i = structure_[a];
-            const DilatedShape& Si = world.shapeOf(i);
-            const Mat3 Ri = bodies[i].rotation();
-            for (std::size_t b = a; b < structure_.size(); ++b)
+            const DilatedShape& S = world.shapeOf(i);
+            const Mat3 R = bodies[i].rotation();
+            for (const Vec3& v : S.core().vertices())
             {
-                const int j = structure_[b];
-                const DilatedShape& Sj = world.shapeOf(j);
-                const Mat3 Rj = bodies[j].rotation();
-                for (const Vec3& u : Si.core().vertices())
-                {
-                    const Vec3 wu = Ri*u + bodies[i].x;
-                    for (const Vec3& v : Sj.core().vertices())
-                    {
-                        const Vec3 wv = Rj*v + bodies[j].x;
-                        diameter = std::max
-                        (
-                            diameter,
-                            std::hypot(wu.x() - wv.x(), wu.y() - wv.y())
-                          + Si.radius() + Sj.radius()
-                        );
-                    }
-                }
+                const Vec3 w = R*v + bodies[i].x;
+                plan.emplace_back(w.x(), w.y(), S.radius());
+            }
+        }
+        double diameter = 0;
+        for (std::size_t a = 0; a < plan.size(); ++a)
+        {
+            for (std::size_t b = a; b < plan.size(); ++b)
+            {
+                diameter = std::max
+                (
+                    diameter,
+                    std::hypot(plan[a].x() - plan[b].x(), plan[a].y() - plan[b].y())
+                  + plan[a].z() + plan[b].z()
+                );
             }
         }
         for (int d = 0; d < 2; ++d)

@@ -111,12 +111,12 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::check
 Foam::vector
 Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::verticalStiffness
 (
-    const sixDoFRigidBodyMotion& motion
+    const sixDoFRigidBodyMotion& motion,
+    const pointField& pts
 ) const
 {
     const vector g = gravity(motion.time(), sDoFRBMRCoeffs_);
     const point G = motion.centreOfMass();
-    const pointField pts(motion.transform(points0_));
 
     // Buoyancy's vertical force and its moments about G (the weight has
     // none about G) at the pose moved by a heave, a roll or a pitch
@@ -153,17 +153,6 @@ Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::verticalStiffness
 }
 
 
-Foam::floatingStructure::submergedPart
-Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::submerged
-(
-    const sixDoFRigidBodyMotion& motion
-) const
-{
-    const pointField pts(motion.transform(points0_));
-    return floatingStructure::clip(pts, faces_, level_);
-}
-
-
 void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::restrain
 (
     const sixDoFRigidBodyMotion& motion,
@@ -176,12 +165,14 @@ void Foam::sixDoFRigidBodyMotionRestraints::hullHydrostatics::restrain
     {
         check(motion);
     }
-    // The stiffness at every evaluation, at the pose it is made at (the
+    // The hull at the motion's pose; its stiffness at every evaluation (the
     // structure's check of its vertical modes follows each step)
-    addVerticalModes(motion.time(), name_, verticalStiffness(motion), Zero);
+    const pointField pts(motion.transform(points0_));
+    addVerticalModes(motion.time(), name_, verticalStiffness(motion, pts), Zero);
 
     const vector g = gravity(motion.time(), sDoFRBMRCoeffs_);
-    const floatingStructure::submergedPart sub = submerged(motion);
+    const floatingStructure::submergedPart sub =
+        floatingStructure::clip(pts, faces_, level_);
 
     restraintPosition = sub.centroid;
     restraintForce = -rhoWater_*sub.volume*g;
