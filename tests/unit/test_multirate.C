@@ -127,6 +127,77 @@ TEST(MultiRate, intervalBelowOneIsAnError)
 }
 
 
+//- A floe inserted in a run (inflow) that breaks a bound the floes the run
+//  started with keep stops the run at the step it joins, naming
+//  bodyForceInterval: one bound at a time (the other kept), and a floe like
+//  the first joins. Without the check the run goes on past either.
+TEST(MultiRate, anInsertedFloeBeyondTheBoundsStopsTheRunWhereItJoins)
+{
+    const SingleThread oneThread;
+    const int k = 8;     // so that the smaller floe keeps deltaT's own bound
+
+    // A 4 x 4 x 1 floe at rest, of ice soft enough (E = 1 MPa) that its
+    // contact bound is near its heave bound: its bounds set the step, H
+    // just inside them
+    const auto world = [&](double dt)
+    {
+        WorldSettings ws;
+        ws.timeStep = dt;
+        ws.gravity = Vec3(0, 0, -g);
+        ws.bodyForceInterval = k;
+        auto w = std::make_unique<World>(ws);
+        w->addMaterial(Material{"ice", rhoIce, 1e6, 0.33});
+        addBox(*w, 4, 4, 1, -rhoIce/rhoWater);
+        w->addForceModel(std::make_shared<Buoyancy>(water));
+        return w;
+    };
+    const auto startWith = [&](double& dt)
+    {
+        const BodyForceLimits b = world(1.0)->bodyForceLimits(0, 1);
+        dt = 0.98*std::min(b.contactLimit(), b.periodLimit())/k;
+        return world(dt);
+    };
+    // The inserted floe's bounds, at its insertion pose, at the step dt
+    const auto insert = [&](World& w, double L, double h)
+    {
+        const int shape = w.addShape(boxFloe(L, L, h, -rhoIce/rhoWater*h));
+        const int i = w.insertBodyInRun(shape, 0, Vec3(100, 0, 0), Quat::Identity(), Vec3::Zero());
+        return w.bodyForceLimits(i, i + 1);
+    };
+
+    // Like the first: joins
+    {
+        double dt;
+        auto w = startWith(dt);
+        for (int n = 0; n < 5; ++n) w->step();
+        insert(*w, 4, 1);
+        EXPECT_NO_THROW(for (int n = 0; n < 5; ++n) w->step());
+    }
+    // Smaller (a shorter contact time; the same thickness, so the same
+    // heave period, and a longer roll period): the contact bound
+    {
+        double dt;
+        auto w = startWith(dt);
+        for (int n = 0; n < 5; ++n) w->step();
+        const BodyForceLimits b = insert(*w, 1, 1);
+        ASSERT_GT(k*dt, b.contactLimit());
+        ASSERT_LT(k*dt, b.periodLimit());
+        expectError([&]{ w->step(); }, "bodyForceInterval");
+    }
+    // Wider and thinner (heavier: a longer contact time; a shorter heave
+    // period): the period bound
+    {
+        double dt;
+        auto w = startWith(dt);
+        for (int n = 0; n < 5; ++n) w->step();
+        const BodyForceLimits b = insert(*w, 20, 0.2);
+        ASSERT_LT(k*dt, b.contactLimit());
+        ASSERT_GT(k*dt, b.periodLimit());
+        expectError([&]{ w->step(); }, "bodyForceInterval");
+    }
+}
+
+
 TEST(MultiRate, heavePeriodErrorScalesAsTheOuterStepSquared)
 {
     const SingleThread oneThread;

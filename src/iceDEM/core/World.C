@@ -235,10 +235,17 @@ bool World::modelsReadOuter() const
 
 double World::estimatedContactTime() const
 {
+    return estimatedContactTime(0, static_cast<int>(bodies_.size()));
+}
+
+
+double World::estimatedContactTime(int begin, int end) const
+{
     double tc = std::numeric_limits<double>::max();
     const int M = static_cast<int>(materials_.size());
-    for (const Body& b : bodies_)
+    for (int i = begin; i < end; ++i)
     {
+        const Body& b = bodies_[i];
         if (!b.isFree()) continue;
         double Estar = 0;
         for (int m = 0; m < M; ++m)

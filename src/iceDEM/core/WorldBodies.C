@@ -178,6 +178,7 @@ void World::joinInserted()
             throw Error(msg.str(), "bodies");
         }
     }
+    checkInsertedBodyForceLimits(first);
 }
 
 } // namespace iceDEM

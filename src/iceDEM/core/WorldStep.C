@@ -57,13 +57,19 @@ using namespace worldDetail;
       hydrostatic modes: stable for omega H < 2, i.e. H < T/pi, T the
       shortest heave, roll or pitch period; the period's relative error is
       (omega H)^2/24 (the test's scaling). The case reader stops above
-      H = T_min/pi (shortestHydrostaticPeriod at the start poses).
+      H = T_min/pi (BodyForceModel::shortestPeriod of the start poses:
+      the buoyancy's shortestHydrostaticPeriod).
     - Resonance with the fast modes: impulses every H excite a contact's
       oscillation (period 2 t_c, t_c the Hertz contact time) when H is near
       a multiple of its half period; linear resonance first at H = t_c,
       nonlinear at a third of the period (Ma, Izaguirre & Skeel 2003, SIAM
       J. Sci. Comput. 24:1951). The reader stops above H = 2 t_c/3, below
       every resonance of the contacts, whose own step dt is unchanged.
+    - Both bounds (bodyForceLimits) hold for the bodies a case starts
+      with; a body inserted in the run (inflow: a new floe, possibly
+      smaller than any before, so a shorter contact time) is checked when
+      it joins, and the run stops there (checkInsertedBodyForceLimits),
+      as its restart would not run past it unchecked either.
     - Velocity-dependent forces (drag, wind, floe damping) are evaluated
       explicitly with the velocity of the boundary's first half kick, as
       the single-rate step does; an explicit kick is stable for H below
@@ -82,6 +88,58 @@ using namespace worldDetail;
     between), so a force balance summing it over the steps sees the
     impulses the floes received.
 */
+
+double BodyForceModel::shortestPeriod(const World&, int, int) const
+{
+    return std::numeric_limits<double>::infinity();
+}
+
+
+BodyForceLimits World::bodyForceLimits(int begin, int end) const
+{
+    BodyForceLimits limits;
+    limits.contactTime = estimatedContactTime(begin, end);
+    for (const auto& m : forceModels_)
+    {
+        limits.period = std::min(limits.period, m->shortestPeriod(*this, begin, end));
+    }
+    return limits;
+}
+
+
+void World::checkInsertedBodyForceLimits(int first) const
+{
+    const int k = bodyForceInterval();
+    if (k <= 1) return;
+    const double H = k*settings_.timeStep;
+    const int N = static_cast<int>(bodies_.size());
+    for (int i = first; i < N; ++i)
+    {
+        const BodyForceLimits limits = bodyForceLimits(i, i + 1);
+        const bool contact = H > limits.contactLimit();
+        if (!contact && !(H > limits.periodLimit())) continue;
+        std::ostringstream msg;
+        msg << "inserted body " << bodies_[i].id << ": the multi-rate step's outer step "
+            << H << " s (bodyForceInterval " << k << ", deltaT " << settings_.timeStep
+            << " s) exceeds ";
+        if (contact)
+        {
+            msg << "2/3 of its estimated Hertz contact time " << limits.contactTime
+                << " s (resonance with the contacts)";
+        }
+        else
+        {
+            msg << "1/pi of its shortest heave, roll or pitch period " << limits.period
+                << " s (stability of the hydrostatic modes)";
+        }
+        msg << "; an inserted floe is a new shape, checked as it joins: for this one at"
+            << " most bodyForceInterval "
+            << std::max(1, int(std::floor(std::min(limits.contactLimit(), limits.periodLimit())
+                                          /settings_.timeStep)));
+        throw Error(msg.str(), "bodyForceInterval");
+    }
+}
+
 
 void World::setBodyForcePhase(int phase)
 {

@@ -6,6 +6,7 @@
 #include "Buoyancy.H"
 #include "WaterFrame.H"
 #include "WaterClip.H"
+#include "FloeDamping.H"
 
 #include <cmath>
 #include <string>
@@ -42,6 +43,12 @@ Buoyancy::Buoyancy(const WaterSettings& water)
 const char* Buoyancy::name() const
 {
     return "buoyancy";
+}
+
+
+double Buoyancy::shortestPeriod(const World& world, int begin, int end) const
+{
+    return shortestHydrostaticPeriod(world, water_, begin, end);
 }
 
 

@@ -214,17 +214,32 @@ Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
 
 double shortestHydrostaticPeriod(const World& world, const WaterSettings& water)
 {
+    return shortestHydrostaticPeriod
+    (
+        world, water, 0, static_cast<int>(world.bodies().size())
+    );
+}
+
+
+double shortestHydrostaticPeriod
+(
+    const World& world,
+    const WaterSettings& water,
+    int begin,
+    int end
+)
+{
     const double rhoG = water.density*world.settings().gravity.norm();
     double T = std::numeric_limits<double>::infinity();
     if (!(rhoG > 0)) return T;
     PolyhedronBuffer buffer;
     const double twoPi = 2*M_PI;
     const std::vector<Body>& bodies = world.bodies();
-    for (std::size_t i = 0; i < bodies.size(); ++i)
+    for (int i = begin; i < end; ++i)
     {
         const Body& b = bodies[i];
         if (!b.isFree()) continue;
-        const PolyhedronView P = world.shapeOf(int(i)).outer(buffer);
+        const PolyhedronView P = world.shapeOf(i).outer(buffer);
         const Mat3 R = b.rotation();
         const Waterplane wp = waterplane(P, R, b.x, water.level);
         if (!(wp.area > 0)) continue;

@@ -10,7 +10,6 @@ Description
 \*---------------------------------------------------------------------------*/
 
 #include "iceDEMCase.H"
-#include "hydro/FloeDamping.H"
 
 #include <cmath>
 #include <limits>
@@ -143,19 +142,17 @@ void Foam::iceDEMCase::checkBodyForceInterval() const
     }
     const scalar H = k*s.timeStep;
 
-    // Resonance with the contacts (WorldStep.C): below 2/3 of the Hertz
-    // contact time (a third of the contact's period)
-    const scalar tc = world_->bodies().size()
-      ? world_->estimatedContactTime() : GREAT;
-    const scalar contactLimit = 2.0/3.0*tc;
-
-    // Stability of the slow part: omega H < 2 for the fastest hydrostatic
-    // mode of the floes at their poses in constant/iceField
-    ::iceDEM::WaterSettings water;
-    water.density = waterDensity_;
-    water.level = waterLevel_;
-    const scalar T = ::iceDEM::shortestHydrostaticPeriod(*world_, water);
-    const scalar hydroLimit = T/M_PI;
+    // The bounds of WorldStep.C at the floes' poses in constant/iceField:
+    // resonance with the contacts (2/3 of the Hertz contact time, a third
+    // of the contact's period) and stability of the slow part (omega H < 2
+    // for the fastest hydrostatic mode); floes an inflow inserts are
+    // checked by the DEM as they join
+    const ::iceDEM::BodyForceLimits limits =
+        world_->bodyForceLimits(0, label(world_->bodies().size()));
+    const scalar tc = limits.contactTime;
+    const scalar contactLimit = limits.contactLimit();
+    const scalar T = limits.period;
+    const scalar hydroLimit = limits.periodLimit();
 
     if (H > contactLimit || H > hydroLimit)
     {
@@ -175,7 +172,13 @@ void Foam::iceDEMCase::checkBodyForceInterval() const
     Info<< "iceDEM: multi-rate step: body forces every " << k
         << " DEM steps (" << H << " s; limits " << contactLimit
         << " s from the contact time, " << hydroLimit
-        << " s from the hydrostatic periods)" << nl;
+        << " s from the hydrostatic periods";
+    if (inflow_)
+    {
+        Info<< "; the floes the inflow inserts are checked as they join:"
+            << " the run stops at one beyond them";
+    }
+    Info<< ")" << nl;
 }
 
 

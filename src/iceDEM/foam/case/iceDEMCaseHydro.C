@@ -202,7 +202,6 @@ void Foam::iceDEMCase::readWater(const flowVelocityFactory& resolvedFlow)
     }
     world_->addForceModel(std::make_shared<::iceDEM::Buoyancy>(water));
     water_ = true;
-    waterDensity_ = water.density;
     waterLevel_ = water.level;
 
     addFloeDamping(properties_, *world_, water);
