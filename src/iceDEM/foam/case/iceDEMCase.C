@@ -346,12 +346,21 @@ void Foam::iceDEMCase::start()
         );
     }
 
+    reportWarnings();
+    startInflowOutflow();
+}
+
+
+void Foam::iceDEMCase::reportWarnings()
+{
     for (const std::string& msg : world_->warnings())
     {
-        IOWarningInFunction(properties_)
-            << msg.c_str() << nl << endl;
+        if (warned_.insert(msg).second)
+        {
+            IOWarningInFunction(properties_)
+                << msg.c_str() << nl << endl;
+        }
     }
-    startInflowOutflow();
 }
 
 

@@ -441,6 +441,7 @@ void Foam::iceDEMCase::writeInflowOutflow()
     {
         return;
     }
+    reportWarnings();
     const ::iceDEM::World& w = *world_;
     label floes = 0;
     for (const ::iceDEM::Body& b : w.bodies())
