@@ -68,8 +68,8 @@ using namespace worldDetail;
     - Both bounds (bodyForceLimits) hold for the bodies a case starts
       with; a body inserted in the run (inflow: a new floe, possibly
       smaller than any before, so a shorter contact time) is checked when
-      it joins, and the run stops there (checkInsertedBodyForceLimits),
-      as its restart would not run past it unchecked either.
+      it joins, and the run stops there (checkInsertedBodyForceLimits):
+      every floe that ever runs is inside them.
     - Velocity-dependent forces (drag, wind, floe damping) are evaluated
       explicitly with the velocity of the boundary's first half kick, as
       the single-rate step does; an explicit kick is stable for H below
