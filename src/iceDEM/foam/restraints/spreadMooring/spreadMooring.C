@@ -239,6 +239,23 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::~spreadMooring()
 
 // * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * * //
 
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::lineState
+Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::line
+(
+    const sixDoFRigidBodyMotion& motion,
+    const label i
+) const
+{
+    lineState s;
+    s.fairlead = motion.transform(fairleads_[i]);
+    s.r = s.fairlead - anchors_[i];
+    s.length = mag(s.r);
+    s.direction = s.r/(s.length + VSMALL);
+    s.elasticTension = stiffness_[i]*(s.length - restLength_[i]);
+    return s;
+}
+
+
 Foam::tmp<Foam::scalarField>
 Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
 (
@@ -250,15 +267,12 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
 
     forAll(anchors_, i)
     {
-        const point f = motion.transform(fairleads_[i]);
-        const vector r = f - anchors_[i];
-        const scalar L = mag(r);
-        const vector e = r/(L + VSMALL);
+        const lineState s = line(motion, i);
         T[i] = max
         (
             scalar(0),
-            stiffness_[i]*(L - restLength_[i])
-          + damping_[i]*(e & motion.velocity(f))
+            s.elasticTension
+          + damping_[i]*(s.direction & motion.velocity(s.fairlead))
         );
     }
     return tT;
@@ -268,27 +282,19 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::tensions
 Foam::tensor
 Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::lineStiffness
 (
-    const sixDoFRigidBodyMotion& motion,
+    const lineState& s,
     const label i,
-    const bool everyLineTaut,
-    point& fairlead,
-    vector& e,
-    vector& force
+    const bool everyLineTaut
 ) const
 {
-    fairlead = motion.transform(fairleads_[i]);
-    const vector r = fairlead - anchors_[i];
-    const scalar L = mag(r);
-    e = r/(L + VSMALL);
-    const scalar T = stiffness_[i]*(L - restLength_[i]);
-    force = -max(T, scalar(0))*e;
-    if (!(T > 0 || everyLineTaut))
+    if (!(s.elasticTension > 0 || everyLineTaut))
     {
         return Zero;
     }
+    const vector& e = s.direction;
     return
         stiffness_[i]*sqr(e)
-      + (max(T, scalar(0))/L)*(tensor::I - sqr(e));
+      + (max(s.elasticTension, scalar(0))/s.length)*(tensor::I - sqr(e));
 }
 
 
@@ -300,11 +306,9 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::stiffnessMatrix
 ) const
 {
     tensor K(Zero);
-    point f;
-    vector e, F;
     forAll(anchors_, i)
     {
-        K += lineStiffness(motion, i, everyLineTaut, f, e, F);
+        K += lineStiffness(line(motion, i), i, everyLineTaut);
     }
     return K;
 }
@@ -317,12 +321,9 @@ Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::dampingMatrix
 ) const
 {
     tensor D(Zero);
-    point f;
-    vector e, F;
     forAll(anchors_, i)
     {
-        lineStiffness(motion, i, true, f, e, F);
-        D += damping_[i]*tensor(sqr(e));
+        D += damping_[i]*tensor(sqr(line(motion, i).direction));
     }
     return D;
 }
@@ -340,12 +341,13 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::verticalModes
     const FixedList<vector, 2> axes({vector(1, 0, 0), vector(0, 1, 0)});
     stiffness = Zero;
     damping = Zero;
-    point f;
-    vector e, F;
     forAll(anchors_, i)
     {
-        const tensor K = lineStiffness(motion, i, true, f, e, F);
-        const vector arm = f - G;
+        const lineState s = line(motion, i);
+        const tensor K = lineStiffness(s, i, true);
+        const vector& e = s.direction;
+        const vector F = -max(s.elasticTension, scalar(0))*e;
+        const vector arm = s.fairlead - G;
         stiffness.x() += ez & K & ez;
         damping.x() += damping_[i]*sqr(e & ez);
         for (label k = 0; k < 2; ++k)
@@ -467,11 +469,10 @@ void Foam::sixDoFRigidBodyMotionRestraints::spreadMooring::restrain
 
     forAll(anchors_, i)
     {
-        const point f = motion.transform(fairleads_[i]);
-        const vector r = f - anchors_[i];
-        const vector F = -T[i]*r/(mag(r) + VSMALL);
+        const lineState s = line(motion, i);
+        const vector F = -T[i]*s.r/(s.length + VSMALL);
         restraintForce += F;
-        restraintMoment += (f - CofR) ^ F;
+        restraintMoment += (s.fairlead - CofR) ^ F;
     }
 
     // The tensions on the Time database for function objects
