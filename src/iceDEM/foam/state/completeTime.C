@@ -4,6 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "completeTime.H"
+#include "safePurgeTime.H"
 
 #include "IFstream.H"
 #include "OFstream.H"
@@ -254,7 +255,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
         IFstream is(dictPath);
         if (!is.good())
         {
-            return autoPtr<Time>::New(Time::controlDictName, args);
+            return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
         }
         ctrl.read(is);
         ctrl.remove("FoamFile");
@@ -267,7 +268,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
      && !(startFrom == "startTime" && ctrl.readIfPresent("startTime", requested))
     )
     {
-        return autoPtr<Time>::New(Time::controlDictName, args);
+        return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
     }
 
     // The time directories of this (processor) case and their status
@@ -329,7 +330,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     if (!wanted || completeOnAll(*wanted))
     {
         // Nothing to start from (OpenFOAM says so) or a complete time
-        return autoPtr<Time>::New(Time::controlDictName, args);
+        return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
     }
 
     // The last complete time at or before it
@@ -443,15 +444,18 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
       ? !args.found("noFunctionObjects")
       : false;
 
-    return autoPtr<Time>::New
+    return autoPtr<Time>
     (
-        ctrl,
-        args.rootPath(),
-        args.caseName(),
-        "system",
-        "constant",
-        functionObjects,
-        !args.found("no-libs")
+        new safePurgeTime
+        (
+            ctrl,
+            args.rootPath(),
+            args.caseName(),
+            "system",
+            "constant",
+            functionObjects,
+            !args.found("no-libs")
+        )
     );
 }
 

@@ -5,6 +5,7 @@
 
 #include "completeTimeWriter.H"
 #include "completeTime.H"
+#include "safePurgeTime.H"
 
 #include "Pstream.H"
 
@@ -113,6 +114,8 @@ bool Foam::completeTimeWriter::write
     completeTime::testWriteDelay();
 
     completeTime::mark(runTime_);
+    // Only now may an older time go (purgeWrite)
+    purgeMarked(runTime_);
     return true;
 }
 
