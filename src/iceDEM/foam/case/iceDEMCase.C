@@ -279,7 +279,11 @@ void Foam::iceDEMCase::start()
     }
     else
     {
+        // A first run, or ice added to a flow that ran before it
         world_->setTime(runTime_.value());
+        Info<< "iceDEM: no DEM state in " << runTime_.timeName()
+            << "/uniform: the ice starts from constant/iceField at t = "
+            << runTime_.value() << nl << endl;
     }
 
     // Prescribed bodies start from their current pose

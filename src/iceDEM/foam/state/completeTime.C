@@ -264,7 +264,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     scalar requested = 0;
     if
     (
-        !(startFrom == "latestTime")
+        !(startFrom == "latestTime" || startFrom == "firstTime")
      && !(startFrom == "startTime" && ctrl.readIfPresent("startTime", requested))
     )
     {
@@ -311,7 +311,16 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     const label nProcs = Pstream::nProcs();
     auto completeOnAll = [&](const info& i) { return i.nOk == nProcs; };
 
-    // The time OpenFOAM would start from
+    // The controlDict's choice, in the messages
+    const std::string selectorText
+    (
+        startFrom == "startTime" ? "startTime" : "startFrom " + startFrom
+    );
+    const char* const selector = selectorText.c_str();
+
+    // The time OpenFOAM would start from (firstTime: the earliest; an
+    // incomplete one falls back to the case's start below, as nothing
+    // complete comes before it)
     const info* wanted = nullptr;
     word wantedName;
     for (const auto& t : times)
@@ -319,6 +328,8 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
         const bool match =
             startFrom == "latestTime"
           ? (!wanted || t.second.value > wanted->value)
+          : startFrom == "firstTime"
+          ? (!wanted || t.second.value < wanted->value)
           : mag(t.second.value - requested)
             <= 1e-12*max(scalar(1), mag(requested));
         if (match)
@@ -403,7 +414,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     {
         FatalErrorInFunction
             << "The start time " << wantedName << " ("
-            << (startFrom == "latestTime" ? "startFrom latestTime" : "startTime")
+            << selector
             << " in " << dictPath << ") is incomplete" << where(wantedName)
             << ": it has no uniform/" << markName
             << " (the run was stopped while writing it) and there is no"
@@ -429,7 +440,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
              : ", the last complete time before "
            )
         << wantedName << " ("
-        << (startFrom == "latestTime" ? "startFrom latestTime" : "startTime")
+        << selector
         << " in " << dictPath << ")" << nl << endl;
 
     // OpenFOAM's Time from the controlDict read above with the start time
