@@ -112,12 +112,6 @@ int main(int argc, char *argv[])
     // A zero or negative deltaT would never reach endTime
     iceDEMChecks::checkTimeControls(runTime);
 
-    #ifdef _OPENMP
-    Info<< "iceDEM: " << omp_get_max_threads() << " OpenMP threads" << nl;
-    #else
-    Info<< "iceDEM: built without OpenMP (1 thread)" << nl;
-    #endif
-
     // A moored structure: the same run as iceFloatingFoam -noFlow
     {
         const IOdictionary properties

@@ -18,6 +18,10 @@ Description
 
 #include <algorithm>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 using namespace Foam::iceDEMChecks;
 
 // * * * * * * * * * * * * * * Static Data Members * * * * * * * * * * * * //
@@ -171,6 +175,7 @@ Foam::iceDEMCase::iceDEMCase
         Info<< ", water on, drag " << dragType_;
     }
     Info<< nl << endl;
+    reportThreads();
 }
 
 
@@ -178,6 +183,30 @@ Foam::iceDEMCase::iceDEMCase
 
 Foam::iceDEMCase::~iceDEMCase()
 {}
+
+
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+void Foam::iceDEMCase::reportThreads() const
+{
+    #ifdef _OPENMP
+    const int threads = omp_get_max_threads();
+    const int processors = omp_get_num_procs();
+    Info<< "iceDEM: " << threads << " OpenMP threads" << nl << endl;
+    if (threads > processors)
+    {
+        // Allowed (the results do not depend on the number of threads),
+        // but threads that wait for a processor hold up each step's barriers
+        WarningInFunction
+            << threads << " OpenMP threads (OMP_NUM_THREADS or -threads) on "
+            << processors << " processor(s) available to this process: the"
+            << " threads share processors and the DEM runs slower than on "
+            << processors << " thread(s); its results are the same" << endl;
+    }
+    #else
+    Info<< "iceDEM: built without OpenMP (1 thread)" << nl << endl;
+    #endif
+}
 
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
@@ -281,9 +310,9 @@ void Foam::iceDEMCase::start()
     {
         // A first run, or ice added to a flow that ran before it
         world_->setTime(runTime_.value());
-        Info<< "iceDEM: no DEM state in " << runTime_.timeName()
-            << "/uniform: the ice starts from constant/iceField at t = "
-            << runTime_.value() << nl << endl;
+        Info<< "iceDEM: the ice starts from constant/iceField at t = "
+            << runTime_.value() << " (no " << runTime_.timeName()
+            << "/uniform/iceDEMState)" << nl << endl;
     }
 
     // Prescribed bodies start from their current pose
