@@ -64,6 +64,10 @@ BASES = os.path.join(ROOT, 'tests', 'cases', 'inputBattery', 'bases')
 SCRATCH = os.environ.get('ICEDEM_FUZZ_DIR', '/tmp/iceDEMfuzz')
 GRAVITY = os.path.join(ROOT, 'tests', 'cases', 'createIceField', 'case', 'constant', 'g')
 TIMEOUT = 120   # seconds per run: the runs take well under 10 s
+# The fields here are small: every loop of the DEM on the threads anyway,
+# so that 1 thread = 2 threads compares the threaded path (below the
+# default cut-off of 256 bodies or pairs a world steps on one thread)
+THREADED = '\nsingleThreadBelow 0;\n'
 
 
 def run(cmd, case, env=None):
@@ -305,7 +309,7 @@ def demCaseRun(i):
     text, L, W, x0, y0, h = fieldDict(rng, small=True)
     open(os.path.join(case, 'system', 'createIceFieldDict'), 'w').write(text)
     open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
-        demProperties(rng, L, W, x0, y0, h))
+        demProperties(rng, L, W, x0, y0, h) + THREADED)
     shutil.copy(GRAVITY, os.path.join(case, 'constant', 'g'))
     demCase(case, 2, 1)
     rc, out = run(['createIceField'], case)
@@ -548,7 +552,7 @@ def coupledCase(i):
     shutil.copytree(base, case)
     open(os.path.join(case, 'constant', 'iceField'), 'w').write(coupledIceField(rng))
     open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
-        coupledProperties(rng, base))
+        coupledProperties(rng, base) + THREADED)
     motion, text = coupledMotion(rng)
     open(os.path.join(case, 'constant', 'dynamicMeshDict'), 'w').write(text)
     flowStep = rng.choice([0.05, 0.1, 0.2])
@@ -674,7 +678,7 @@ def noflowCase(i):
     half = rng.choice([6.0, 10.0])
     open(os.path.join(case, 'system', 'createIceFieldDict'), 'w').write(noflowField(rng, half))
     open(os.path.join(case, 'constant', 'iceDEMProperties'), 'w').write(
-        noflowProperties(rng, half))
+        noflowProperties(rng, half) + THREADED)
     open(os.path.join(case, 'constant', 'dynamicMeshDict'), 'w').write(noflowMotion(rng))
     if rng.random() < 0.5:
         # a faceted hull (a cone, a column, a cone on a column ...) instead

@@ -391,7 +391,7 @@ TEST(periodic, momentumOfAPeriodicFieldIsConserved)
 
 TEST(periodic, resultsDoNotDependOnTheNumberOfThreads)
 {
-    // From 1000 bodies up the step runs in parallel
+    // From 256 bodies (singleThreadBelow) up the step runs in parallel
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     auto a = makePeriodicField(1200, 5);

@@ -458,11 +458,12 @@ TEST(Drag, spinDown)
 TEST(Drag, independentOfThreadCount)
 {
     // Several floes drifting and spinning in a current: the same states
-    // with one thread and with two
+    // with one thread and with two (five floes: on the threads only with
+    // singleThreadBelow 0)
     auto run = [](int threads)
     {
         omp_set_num_threads(threads);
-        DragWorld dw(5e-3);
+        DragWorld dw(5e-3, Vec3(0, 0, -test::hydro::g), 1e7, 0);
         for (int k = 0; k < 5; ++k)
         {
             dw.addFloe

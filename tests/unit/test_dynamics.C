@@ -331,9 +331,10 @@ TEST(invariants, resultsDoNotDependOnTheNumberOfThreads)
 
 TEST(invariants, parallelStepDoesNotDependOnTheNumberOfThreads)
 {
-    // A step runs in parallel from 1000 bodies up (below, on one thread
-    // whatever the team): the same check on 1200, where the pair loop's
-    // threads share world frames, certificates and the pools
+    // A step runs in parallel from 256 bodies (singleThreadBelow) up
+    // (below, on one thread whatever the team): the same check on 1200,
+    // where the pair loop's threads share world frames, certificates and
+    // the pools
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     auto a = makeField(1200, 5);
@@ -350,6 +351,34 @@ TEST(invariants, parallelStepDoesNotDependOnTheNumberOfThreads)
     EXPECT_GT(a->neighbourListBuilds(), 1);
     EXPECT_GT(touching, 20);
     expectSameState(*a, *b);
+}
+
+
+TEST(invariants, aSmallWorldOnTheThreadsEqualsItsStepOnOneThread)
+{
+    // 100 floes: below the default cut-off the world steps on the calling
+    // thread; with singleThreadBelow 0 the same world steps on the team
+    // (the tests of small cases compare 1 and 2 threads so): the same
+    // states, and the team's step the same on 1 and 2 threads
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(std::max(2, threads));
+    auto a = makeField(100, 11);
+    auto b = makeField(100, 11, -1, 0);
+    int touching = 0;
+    while (a->time() < 1.0)
+    {
+        a->step();
+        touching = std::max(touching, a->contactPairCount());
+    }
+    b->advanceTo(a->time());
+    omp_set_num_threads(1);
+    auto c = makeField(100, 11, -1, 0);
+    c->advanceTo(a->time());
+    omp_set_num_threads(threads);
+    EXPECT_GT(a->neighbourListBuilds(), 1);
+    EXPECT_GT(touching, 5);
+    expectSameState(*a, *b);
+    expectSameState(*a, *c);
 }
 
 

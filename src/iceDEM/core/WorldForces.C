@@ -137,7 +137,7 @@ void World::bodyForces(double dtKick, int slowScale)
         m->prepare(*this);
     }
 
-    parallelRegion(N >= minParallelBodies, [&] { sumBodyForces(dtKick, slowScale); });
+    parallelRegion(N >= settings_.singleThreadBelow, [&] { sumBodyForces(dtKick, slowScale); });
 }
 
 

@@ -99,7 +99,7 @@ void World::updateWorldVertices()
 {
     resizeBodyFrames();
     const int N = static_cast<int>(bodies_.size());
-    parallelRegion(N >= minParallelBodies, [&]
+    parallelRegion(N >= settings_.singleThreadBelow, [&]
     {
         #pragma omp for schedule(static)
         for (int i = 0; i < N; ++i)

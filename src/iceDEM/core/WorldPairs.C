@@ -550,7 +550,7 @@ void World::computeForces(double dtTangential)
     ++evaluation_;
     preparePairs();
     const int nPairs = static_cast<int>(nlist_->pairs().size());
-    parallelRegion(nPairs >= minParallelLoop, [&] { pairForces(dtTangential); });
+    parallelRegion(nPairs >= settings_.singleThreadBelow, [&] { pairForces(dtTangential); });
     // A start is an outer step's boundary; a body inserted in the middle
     // of an outer step takes the slow kick of the rest of it
     bodyForces(0, std::max(1, bodyForceInterval() - bodyForcePhase_));

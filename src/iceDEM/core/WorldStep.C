@@ -235,7 +235,7 @@ void World::stepBy(double dt)
     // One team for the first half step, the world frames, the neighbour
     // list and the contacts (fewer fork-joins and barriers: on a loaded
     // machine each waits for the slowest thread)
-    parallelRegion(N >= minParallelBodies, [&]
+    parallelRegion(N >= settings_.singleThreadBelow, [&]
     {
         // First half kick, drift, rotation; then the neighbour list's
         // check (some body moved more than skin/2) and the body's motion

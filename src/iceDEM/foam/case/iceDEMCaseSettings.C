@@ -81,6 +81,21 @@ using namespace Foam::iceDEMChecks;
         s.bodyForceInterval = int(k);
     }
 
+    // Small worlds step on one thread (the results are the same)
+    {
+        const scalar n = d.getOrDefault<scalar>("singleThreadBelow", 256);
+        if (!(n >= 0 && n <= 1e9 && n == std::floor(n)))
+        {
+            FatalIOErrorInFunction(d)
+                << "Entry 'singleThreadBelow' of constant/iceDEMProperties"
+                << " is " << n << ": it must be an integer in [0, 1e9] (the"
+                << " DEM's loops over fewer bodies or pairs run on one"
+                << " thread; 0: every loop on all threads)" << nl
+                << exit(FatalIOError);
+        }
+        s.singleThreadBelow = int(n);
+    }
+
     // The restart state is read by OpenFOAM's tokenizer, which gives +0 for
     // "-0" and for |value| <= VSMALL: the running state keeps those as +0
     s.storeFloor = VSMALL;
