@@ -66,35 +66,41 @@ using namespace Foam::iceDEMChecks;
     s.contactStepsWarn = positive(d, "contactStepsWarn", 10);
     s.contactStepsMin = nonNegative(d, "contactStepsMin", 3);
 
-    // Multi-rate step: an integer >= 1 (read as a scalar to say so)
+    // Integer entries in [lo, hi], read as scalars to say so when they are
+    // not integers; range: [lo, hi] as the message writes it
+    auto integerEntry = [&d]
+    (
+        const word& name,
+        scalar deflt,
+        scalar lo,
+        scalar hi,
+        const char* range,
+        const char* meaning
+    )
     {
-        const scalar k = d.getOrDefault<scalar>("bodyForceInterval", 1);
-        if (!(k >= 1 && k <= 1e6 && k == std::floor(k)))
+        const scalar v = d.getOrDefault<scalar>(name, deflt);
+        if (!(v >= lo && v <= hi && v == std::floor(v)))
         {
             FatalIOErrorInFunction(d)
-                << "Entry 'bodyForceInterval' of constant/iceDEMProperties"
-                << " is " << k << ": it must be an integer >= 1 (the body"
-                << " forces are evaluated every bodyForceInterval-th DEM"
-                << " step; 1: every step)" << nl
+                << "Entry '" << name << "' of constant/iceDEMProperties is "
+                << v << ": it must be an integer in " << range << " ("
+                << meaning << ")" << nl
                 << exit(FatalIOError);
         }
-        s.bodyForceInterval = int(k);
-    }
-
-    // Small worlds step on one thread (the results are the same)
-    {
-        const scalar n = d.getOrDefault<scalar>("singleThreadBelow", 256);
-        if (!(n >= 0 && n <= 1e9 && n == std::floor(n)))
-        {
-            FatalIOErrorInFunction(d)
-                << "Entry 'singleThreadBelow' of constant/iceDEMProperties"
-                << " is " << n << ": it must be an integer in [0, 1e9] (the"
-                << " DEM's loops over fewer bodies or pairs run on one"
-                << " thread; 0: every loop on all threads)" << nl
-                << exit(FatalIOError);
-        }
-        s.singleThreadBelow = int(n);
-    }
+        return int(v);
+    };
+    s.bodyForceInterval = integerEntry
+    (
+        "bodyForceInterval", 1, 1, 1e6, "[1, 1e6]",
+        "the body forces are evaluated every bodyForceInterval-th DEM step;"
+        " 1: every step"
+    );
+    s.singleThreadBelow = integerEntry
+    (
+        "singleThreadBelow", 256, 0, 1e9, "[0, 1e9]",
+        "the DEM's loops over fewer bodies or pairs run on one thread;"
+        " 0: every loop on all threads"
+    );
 
     // The restart state is read by OpenFOAM's tokenizer, which gives +0 for
     // "-0" and for |value| <= VSMALL: the running state keeps those as +0
