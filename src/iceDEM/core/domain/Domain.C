@@ -17,6 +17,23 @@ namespace iceDEM
 namespace
 {
     const char* axisName(int d) { return d == 0 ? "x" : "y"; }
+
+    //- f(w, r) for every core vertex of the bodies ids at their present
+    //  poses (w in the world frame) with the body's dilation radius r
+    template<class F>
+    void forEachCoreVertex(const World& world, const std::vector<int>& ids, F f)
+    {
+        for (const int i : ids)
+        {
+            const Body& b = world.bodies()[i];
+            const DilatedShape& S = world.shapeOf(i);
+            const Mat3 R = b.rotation();
+            for (const Vec3& v : S.core().vertices())
+            {
+                f(Vec3(R*v + b.x), S.radius());
+            }
+        }
+    }
 }
 
 
@@ -156,16 +173,11 @@ void Domain::check
     {
         // The structure's core vertices in plan and their dilation radii
         std::vector<Vec3> plan;
-        for (const int i : structure_)
-        {
-            const DilatedShape& S = world.shapeOf(i);
-            const Mat3 R = bodies[i].rotation();
-            for (const Vec3& v : S.core().vertices())
-            {
-                const Vec3 w = R*v + bodies[i].x;
-                plan.emplace_back(w.x(), w.y(), S.radius());
-            }
-        }
+        forEachCoreVertex
+        (
+            world, structure_,
+            [&](const Vec3& w, double r) { plan.emplace_back(w.x(), w.y(), r); }
+        );
         double diameter = 0;
         for (std::size_t a = 0; a < plan.size(); ++a)
         {
@@ -216,23 +228,19 @@ void Domain::check
 void Domain::checkStructure(const World& world) const
 {
     if (structure_.empty()) return;
-    const std::vector<Body>& bodies = world.bodies();
 
     // Extent of the bodies that do not move freely, at their present pose
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max());
     Vec3 hi = -lo;
-    for (const int i : structure_)
-    {
-        const Body& b = bodies[i];
-        const DilatedShape& S = world.shapeOf(i);
-        const Mat3 R = b.rotation();
-        for (const Vec3& v : S.core().vertices())
+    forEachCoreVertex
+    (
+        world, structure_,
+        [&](const Vec3& w, double r)
         {
-            const Vec3 w = R*v + b.x;
-            lo = lo.cwiseMin(w - Vec3::Constant(S.radius()));
-            hi = hi.cwiseMax(w + Vec3::Constant(S.radius()));
+            lo = lo.cwiseMin(w - Vec3::Constant(r));
+            hi = hi.cwiseMax(w + Vec3::Constant(r));
         }
-    }
+    );
 
     for (int d = 0; d < 2; ++d)
     {

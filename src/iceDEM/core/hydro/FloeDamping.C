@@ -212,15 +212,6 @@ Waterplane waterplane(const PolyhedronView& P, const WaterFrame& frame)
 }
 
 
-double shortestHydrostaticPeriod(const World& world, const WaterSettings& water)
-{
-    return shortestHydrostaticPeriod
-    (
-        world, water, 0, static_cast<int>(world.bodies().size())
-    );
-}
-
-
 double shortestHydrostaticPeriod
 (
     const World& world,
