@@ -4,7 +4,7 @@
 \*---------------------------------------------------------------------------*/
 
 #include "completeTime.H"
-#include "safePurgeTime.H"
+#include "markingTime.H"
 
 #include "IFstream.H"
 #include "OFstream.H"
@@ -13,11 +13,18 @@
 #include "IOobject.H"
 
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <thread>
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 // * * * * * * * * * * * * * * * Static Data  * * * * * * * * * * * * * * * //
 
@@ -53,6 +60,60 @@ bool renameIntoPlace
     const fileName other(gz ? target : fileName(target + ".gz"));
     std::remove(other.c_str());
     return true;
+}
+
+
+//- Flush a file's data, or a directory's entries, to the disk (fsync).
+//  File systems that cannot sync a directory (EINVAL) have nothing to do;
+//  another failure is warned about once per run: the time is still marked
+//  (a kill cannot lose it, only a power failure)
+void syncPath(const fileName& path, bool directory)
+{
+    const int fd = ::open
+    (
+        path.c_str(), O_RDONLY | O_CLOEXEC | (directory ? O_DIRECTORY : 0)
+    );
+    bool ok = fd >= 0;
+    int err = ok ? 0 : errno;
+    if (ok)
+    {
+        if (::fsync(fd) != 0)
+        {
+            err = errno;
+            ok = (err == EINVAL || err == EROFS);
+        }
+        ::close(fd);
+    }
+    static bool warned = false;
+    if (!ok && !warned)
+    {
+        warned = true;
+        WarningInFunction
+            << "Could not flush " << path << " to the disk ("
+            << std::strerror(err) << "): a power failure could lose the"
+            << " time being marked complete (a kill cannot)" << endl;
+    }
+}
+
+
+//- Every file and directory under dir (depth first), then dir itself
+void syncTree(const fileName& dir)
+{
+    if (DIR* d = ::opendir(dir.c_str()))
+    {
+        while (const dirent* e = ::readdir(d))
+        {
+            const std::string name(e->d_name);
+            if (name == "." || name == "..") continue;
+            const fileName entry(dir/name);
+            struct stat st;
+            if (::lstat(entry.c_str(), &st) != 0) continue;
+            if (S_ISDIR(st.st_mode)) syncTree(entry);
+            else if (S_ISREG(st.st_mode)) syncPath(entry, false);
+        }
+        ::closedir(d);
+    }
+    syncPath(dir, true);
 }
 
 } // End anonymous namespace
@@ -121,6 +182,9 @@ void Foam::completeTime::mark(const Time& runTime)
 {
     const fileName dir(runTime.timePath()/"uniform");
     mkDir(dir);
+    // On the disk before the mark: after a power failure a marked time
+    // holds what was written, not what the page cache had not stored yet
+    syncTree(runTime.timePath());
     const fileName target(dir/markName);
     const fileName tmp(target + ".writing");
     {
@@ -141,14 +205,30 @@ void Foam::completeTime::mark(const Time& runTime)
                 << "Could not write " << tmp << exit(FatalError);
         }
     }
+    syncPath(tmp, false);
     renameIntoPlace(target, tmp, IOstream::UNCOMPRESSED);
+    // The mark, and the time directory's entry in the case (or processor)
+    // directory, on the disk before purgeWrite may remove an older time
+    syncPath(dir, true);
+    syncPath(runTime.timePath().path(), true);
 }
 
 
 void Foam::completeTime::unmark(const Time& runTime)
 {
-    const fileName target(runTime.timePath()/"uniform"/markName);
-    std::remove(target.c_str());
+    unmark(runTime.timePath());
+}
+
+
+void Foam::completeTime::unmark(const fileName& timeDir)
+{
+    const fileName dir(timeDir/"uniform");
+    const fileName target(dir/markName);
+    // Gone from the disk before any file of the time is written again
+    if (std::remove(target.c_str()) == 0)
+    {
+        syncPath(dir, true);
+    }
 }
 
 
@@ -255,7 +335,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
         IFstream is(dictPath);
         if (!is.good())
         {
-            return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
+            return autoPtr<Time>(new markingTime(Time::controlDictName, args));
         }
         ctrl.read(is);
         ctrl.remove("FoamFile");
@@ -268,7 +348,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
      && !(startFrom == "startTime" && ctrl.readIfPresent("startTime", requested))
     )
     {
-        return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
+        return autoPtr<Time>(new markingTime(Time::controlDictName, args));
     }
 
     // The time directories of this (processor) case and their status
@@ -341,7 +421,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     if (!wanted || completeOnAll(*wanted))
     {
         // Nothing to start from (OpenFOAM says so) or a complete time
-        return autoPtr<Time>(new safePurgeTime(Time::controlDictName, args));
+        return autoPtr<Time>(new markingTime(Time::controlDictName, args));
     }
 
     // The last complete time at or before it
@@ -457,7 +537,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
 
     return autoPtr<Time>
     (
-        new safePurgeTime
+        new markingTime
         (
             ctrl,
             args.rootPath(),

@@ -5,7 +5,7 @@
 
 #include "completeTimeWriter.H"
 #include "completeTime.H"
-#include "safePurgeTime.H"
+#include "markingTime.H"
 
 #include "Pstream.H"
 
@@ -26,11 +26,27 @@ extern "C" void onTerminate(int)
 } // End anonymous namespace
 
 
+// * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
+
+Foam::markingTime& Foam::completeTimeWriter::markingTimeOf(Time& runTime)
+{
+    markingTime* t = dynamic_cast<markingTime*>(&runTime);
+    if (!t)
+    {
+        FatalErrorInFunction
+            << "The solver's Time is not completeTime::createTime's: its"
+            << " written times could not be marked complete"
+            << exit(FatalError);
+    }
+    return *t;
+}
+
+
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
 
 Foam::completeTimeWriter::completeTimeWriter(Time& runTime)
 :
-    runTime_(runTime)
+    runTime_(markingTimeOf(runTime))
 {
     struct sigaction act;
     act.sa_handler = onTerminate;
@@ -111,11 +127,9 @@ bool Foam::completeTimeWriter::write
         writeAfter();
     }
 
-    completeTime::testWriteDelay();
-
-    completeTime::mark(runTime_);
-    // Only now may an older time go (purgeWrite)
-    purgeMarked(runTime_);
+    // Marked complete once the function objects have written theirs too
+    // (in the next runTime.run()); then an older time may go (purgeWrite)
+    runTime_.markAfterRun();
     return true;
 }
 

@@ -3,25 +3,27 @@
     Copyright (C) 2026 iceDEM developers.  License: GPL-3.0-or-later.
 \*---------------------------------------------------------------------------*/
 
-#include "safePurgeTime.H"
+#include "markingTime.H"
+#include "completeTime.H"
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
 
-Foam::safePurgeTime::safePurgeTime
+Foam::markingTime::markingTime
 (
     const word& ctrlDictName,
     const argList& args
 )
 :
     Time(ctrlDictName, args),
-    keep_(0)
+    keep_(0),
+    markPending_(false)
 {
     // Time's constructor read the controlDict with its own readDict
     takePurgeWrite();
 }
 
 
-Foam::safePurgeTime::safePurgeTime
+Foam::markingTime::markingTime
 (
     const dictionary& dict,
     const fileName& rootPath,
@@ -37,7 +39,8 @@ Foam::safePurgeTime::safePurgeTime
         dict, rootPath, caseName, systemName, constantName,
         enableFunctionObjects, enableLibs
     ),
-    keep_(0)
+    keep_(0),
+    markPending_(false)
 {
     takePurgeWrite();
 }
@@ -45,26 +48,20 @@ Foam::safePurgeTime::safePurgeTime
 
 // * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * * //
 
-void Foam::safePurgeTime::takePurgeWrite()
+void Foam::markingTime::takePurgeWrite()
 {
     keep_ = purgeWrite_;
     purgeWrite_ = 0;
 }
 
 
-// * * * * * * * * * * * * * Protected Member Functions  * * * * * * * * * * //
-
-void Foam::safePurgeTime::readDict()
+void Foam::markingTime::markAndPurge()
 {
-    Time::readDict();
-    takePurgeWrite();
-}
+    markPending_ = false;
 
+    completeTime::testWriteDelay();
+    completeTime::mark(*this);
 
-// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
-
-void Foam::safePurgeTime::purgeMarked()
-{
     if (keep_ <= 0)
     {
         return;
@@ -77,22 +74,39 @@ void Foam::safePurgeTime::purgeMarked()
     }
     while (written_.size() > keep_)
     {
-        fileHandler().rmDir
+        // Unmarked first: a kill in the middle leaves it incomplete, not
+        // marked with files missing
+        const fileName dir
         (
             fileHandler().filePath(objectRegistry::path(written_.pop()))
         );
+        completeTime::unmark(dir);
+        fileHandler().rmDir(dir);
     }
 }
 
 
-// * * * * * * * * * * * * * * * * Functions  * * * * * * * * * * * * * * * //
+// * * * * * * * * * * * * * Protected Member Functions  * * * * * * * * * * //
 
-void Foam::purgeMarked(Time& runTime)
+void Foam::markingTime::readDict()
 {
-    if (safePurgeTime* t = dynamic_cast<safePurgeTime*>(&runTime))
+    Time::readDict();
+    takePurgeWrite();
+}
+
+
+// * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
+
+bool Foam::markingTime::run() const
+{
+    const bool running = Time::run();
+    if (markPending_)
     {
-        t->purgeMarked();
+        // const as OpenFOAM's run(), which also changes the Time (it reads
+        // modified objects); the mark writes files, not the Time's state
+        const_cast<markingTime&>(*this).markAndPurge();
     }
+    return running;
 }
 
 
