@@ -26,7 +26,9 @@ Description
     Reads system/createIceFieldDict and writes
       - constant/iceField: the floes as 'type prism' bodies
         (doc/caseFiles.md), read by iceDEMFoam and iceFloatingFoam. An
-        existing constant/iceField is kept unless -overwrite is given;
+        existing constant/iceField is kept unless -overwrite is given. It
+        is written to constant/iceField.writing and renamed into place: a
+        kill never leaves half a field under its name;
       - VTK/iceField.vtk: the true floe prisms (legacy VTK polydata) and
         VTK/exclusionZones.vtk (the zones as polylines at the water level);
       - a PNG top view (default iceField.png in the case directory): floes
@@ -138,6 +140,7 @@ SourceFiles
 #include "iceFieldWriters.H"
 #include "iceFieldImage.H"
 
+#include <cstdio>
 #include <sstream>
 
 using namespace Foam;
@@ -545,16 +548,26 @@ int main(int argc, char *argv[])
             " the outline shrunk by radius, from zBottom + radius, thickness"
             " - 2 radius"
         };
+        // Written beside and renamed into place: a kill leaves the old
+        // file or the new one, never half of one (kullukPack's runStudy
+        // takes an iceField as a finished set-up when it resumes)
+        const fileName writing(iceFieldFile + ".writing");
         if
         (
             !iceDEM::writeIceFieldDict
             (
-                iceFieldFile, floes, namePrefix, material, motion, comment
+                writing, floes, namePrefix, material, motion, comment
             )
         )
         {
             FatalErrorInFunction
-                << "cannot write " << iceFieldFile << exit(FatalError);
+                << "cannot write " << writing << exit(FatalError);
+        }
+        if (std::rename(writing.c_str(), iceFieldFile.c_str()) != 0)
+        {
+            FatalErrorInFunction
+                << "cannot rename " << writing << " to " << iceFieldFile
+                << exit(FatalError);
         }
         Info<< "Wrote " << iceFieldFile << endl;
     }
