@@ -22,7 +22,8 @@
 #   mean by 20 batch means (as iceLoadStatistics); the force balance: the
 #   mean of (F + W) along the mean driving force D against |mean D|, with
 #   the batch-means half-width of (F + W - D).d / |mean D|.
-#   Speed: floe-steps per second and contacts per step from speed.txt, and
+#   Speed: floe-steps per second and contacts per step (its sessions weighted
+#   by their DEM steps) from speed.txt, and
 #   the commits its sessions ran from (commits, joined by '+'; "unknown"
 #   where speed.txt has none); the multi-rate step K (bodyForceInterval in
 #   the point's parameters; 1 where it is absent: the runs before the entry).
@@ -278,7 +279,10 @@ def analyseRun(d, transient):
         wall = sum(float(x[2]) for x in rows)
         r["floes"] = int(rows[-1][0])
         r["floeStepsPerSecond"] = int(rows[-1][0])*steps/wall if wall > 0 else float("nan")
-        r["contactsPerStep"] = float(np.mean([float(x[4]) for x in rows]))
+        # weighted by the sessions' steps: a resumed point has several,
+        # and one that resumes a finished run has none
+        r["contactsPerStep"] = (sum(float(x[4])*float(x[1]) for x in rows)/steps
+                                if steps > 0 else float("nan"))
         r["wallTime"] = wall
         commits = []
         for x in rows:
