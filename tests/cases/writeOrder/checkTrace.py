@@ -163,6 +163,11 @@ for t in unmarkedWritten:
         failures.append('time %s written and never marked'
                         % os.path.relpath(t, caseDir))
 
+if not everMarked:
+    # Paths the trace names otherwise than CASE (a symbolic link): nothing
+    # would be checked
+    failures.append('no time directory of %s marked in the trace' % caseDir)
+
 print('checkTrace: %d calls, %d time directories written, %d marked, '
       '%d paths flushed' % (len(lines), len(written), len(everMarked),
                             len(synced)))
