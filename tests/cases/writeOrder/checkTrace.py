@@ -86,17 +86,17 @@ for i, line in enumerate(lines):
     if call == 'openat':
         if not re.search(r'O_WRONLY|O_RDWR', args):
             continue
-        p = os.path.normpath(q[0])
+        p = os.path.realpath(q[0])
         targets = [p]
     elif call == 'mkdir':
-        targets = [os.path.normpath(q[0])]
+        targets = [os.path.realpath(q[0])]
     elif call == 'rename':
-        src, dst = (os.path.normpath(x) for x in q[:2])
+        src, dst = (os.path.realpath(x) for x in q[:2])
         exists.discard(src)
         dirChanged[os.path.dirname(src)] = i
         targets = [dst]
     elif call in ('unlink', 'rmdir'):
-        p = os.path.normpath(q[0])
+        p = os.path.realpath(q[0])
         t = timeDirOf(p)
         exists.discard(p)
         dirChanged[os.path.dirname(p)] = i
