@@ -218,8 +218,22 @@ int main(int argc, char *argv[])
 
     // * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * * //
 
-    // Write times marked complete last; SIGTERM: write and stop
-    completeTimeWriter writer(runTime);
+    // Write times marked complete last, with the flow solver's state
+    // before OpenFOAM's objects and the stock motion solver's state again
+    // after them, with 17 digits (it writes it at writePrecision; the
+    // rigid-lid solver writes 17 itself); SIGTERM: write and stop
+    completeTimeWriter writer
+    (
+        runTime,
+        [&runTime]() { flowSolverState::write(runTime); },
+        [&runTime, stockMotion]()
+        {
+            if (stockMotion)
+            {
+                writeExactMotionState(runTime, stockMotion->motion());
+            }
+        }
+    );
 
     Info<< "\nStarting time loop\n" << endl;
 
@@ -327,19 +341,7 @@ int main(int argc, char *argv[])
             motionLog->write(*hullPtr);
         }
 
-        // The stock motion solver writes its state at writePrecision: again
-        // with 17 digits after it (the rigid-lid solver writes 17 itself)
-        writer.write
-        (
-            [&runTime]() { flowSolverState::write(runTime); },
-            [&runTime, stockMotion]()
-            {
-                if (stockMotion)
-                {
-                    writeExactMotionState(runTime, stockMotion->motion());
-                }
-            }
-        );
+        writer.write();
 
         runTime.printExecutionTime(Info);
     }

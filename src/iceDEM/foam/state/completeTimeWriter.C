@@ -44,10 +44,16 @@ Foam::markingTime& Foam::completeTimeWriter::markingTimeOf(Time& runTime)
 
 // * * * * * * * * * * * * * * * * Constructors  * * * * * * * * * * * * * //
 
-Foam::completeTimeWriter::completeTimeWriter(Time& runTime)
+Foam::completeTimeWriter::completeTimeWriter
+(
+    Time& runTime,
+    const std::function<void()>& writeOwn,
+    const std::function<void()>& writeAfter
+)
 :
     runTime_(markingTimeOf(runTime))
 {
+    runTime_.setSolverWrites(writeOwn, writeAfter);
     struct sigaction act;
     act.sa_handler = onTerminate;
     sigemptyset(&act.sa_mask);
@@ -67,6 +73,8 @@ Foam::completeTimeWriter::completeTimeWriter(Time& runTime)
 Foam::completeTimeWriter::~completeTimeWriter()
 {
     sigaction(SIGTERM, &previous_, nullptr);
+    // Their captures live no longer than the solver's loop
+    runTime_.setSolverWrites(nullptr, nullptr);
 }
 
 
@@ -78,11 +86,7 @@ bool Foam::completeTimeWriter::terminateRequested()
 }
 
 
-bool Foam::completeTimeWriter::write
-(
-    const std::function<void()>& writeOwn,
-    const std::function<void()>& writeAfter
-)
+bool Foam::completeTimeWriter::write()
 {
     bool stop = terminateRequested();
     if (Pstream::parRun())
@@ -99,37 +103,17 @@ bool Foam::completeTimeWriter::write
     {
         Info<< "iceDEM: SIGTERM: writing time " << runTime_.timeName()
             << " and stopping" << nl;
-    }
-
-    // Unmarked while any of its files is being (re)written
-    completeTime::unmark(runTime_);
-
-    if (stop)
-    {
         // Write time now and the last step: run() returns false after it
         runTime_.stopAt(Time::saWriteNow);
         runTime_.setEndTime(runTime_.value());
-    }
-    if (writeOwn)
-    {
-        writeOwn();
-    }
-    if (stop)
-    {
         runTime_.writeNow();
     }
     else
     {
         runTime_.write();
     }
-    if (writeAfter)
-    {
-        writeAfter();
-    }
-
-    // Marked complete once the function objects have written theirs too
-    // (in the next runTime.run()); then an older time may go (purgeWrite)
-    runTime_.markAfterRun();
+    // (markingTime::writeObject: the solver's own files with OpenFOAM's,
+    // the mark in the next runTime.run())
     return true;
 }
 

@@ -16,7 +16,9 @@ Foam::markingTime::markingTime
 :
     Time(ctrlDictName, args),
     keep_(0),
-    markPending_(false)
+    markPending_(false),
+    writing_(false),
+    runDepth_(0)
 {
     // Time's constructor read the controlDict with its own readDict
     takePurgeWrite();
@@ -40,7 +42,9 @@ Foam::markingTime::markingTime
         enableFunctionObjects, enableLibs
     ),
     keep_(0),
-    markPending_(false)
+    markPending_(false),
+    writing_(false),
+    runDepth_(0)
 {
     takePurgeWrite();
 }
@@ -97,10 +101,59 @@ void Foam::markingTime::readDict()
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * //
 
+void Foam::markingTime::setSolverWrites
+(
+    const std::function<void()>& writeOwn,
+    const std::function<void()>& writeAfter
+)
+{
+    writeOwn_ = writeOwn;
+    writeAfter_ = writeAfter;
+}
+
+
+bool Foam::markingTime::writeObject
+(
+    IOstream::streamFormat fmt,
+    IOstream::versionNumber ver,
+    IOstream::compressionType cmp,
+    const bool valid
+) const
+{
+    if (writing_ || !writeTime())
+    {
+        return Time::writeObject(fmt, ver, cmp, valid);
+    }
+
+    writing_ = true;
+    // Unmarked while any of its files is being (re)written
+    completeTime::unmark(*this);
+    if (writeOwn_)
+    {
+        writeOwn_();
+    }
+    const bool ok = Time::writeObject(fmt, ver, cmp, valid);
+    if (writeAfter_)
+    {
+        writeAfter_();
+    }
+    // Marked once the function objects have written theirs too (in the
+    // next run()); then an older time may go (purgeWrite)
+    markPending_ = true;
+    writing_ = false;
+    return ok;
+}
+
+
 bool Foam::markingTime::run() const
 {
+    // A function object may call run() itself (runTimeControl does, after
+    // its writeAndEnd): the mark waits for the outermost run(), after the
+    // function objects' state is written
+    ++runDepth_;
     const bool running = Time::run();
-    if (markPending_)
+    --runDepth_;
+    if (markPending_ && runDepth_ == 0)
     {
         // const as OpenFOAM's run(), which also changes the Time (it reads
         // modified objects); the mark writes files, not the Time's state

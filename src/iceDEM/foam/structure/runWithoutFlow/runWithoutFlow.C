@@ -33,8 +33,9 @@ int Foam::runWithoutFlow(Time& runTime)
         dem.reset(new iceDEMCoupling(runTime, nullptr, &body.motion()));
     }
 
-    // Write times marked complete last; SIGTERM: write and stop
-    completeTimeWriter writer(runTime);
+    // Write times marked complete last, the sixDoF state (not registered)
+    // with them; SIGTERM: write and stop
+    completeTimeWriter writer(runTime, [&]{ body.write(); });
 
     Info<< "\nStarting time loop\n" << endl;
 
@@ -60,8 +61,7 @@ int Foam::runWithoutFlow(Time& runTime)
         }
         motionLog.write(body.motion());
 
-        // The sixDoF state (not registered) written before the mark
-        writer.write([&]{ body.write(); });
+        writer.write();
     }
 
     Info<< "\nEnd\n" << endl;
