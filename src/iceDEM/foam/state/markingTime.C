@@ -138,8 +138,16 @@ bool Foam::markingTime::writeObject
         writeAfter_();
     }
     // Marked once the function objects have written theirs too (in the
-    // next run()); then an older time may go (purgeWrite)
-    markPending_ = true;
+    // next run()); then an older time may go (purgeWrite). Not a time
+    // whose write failed
+    markPending_ = ok;
+    if (!ok)
+    {
+        WarningInFunction
+            << "Writing time " << timeName() << " failed: it is not marked"
+            << " complete (a restart starts from the time before it)"
+            << endl;
+    }
     writing_ = false;
     return ok;
 }
