@@ -225,7 +225,7 @@ int main(int argc, char *argv[])
     completeTimeWriter writer
     (
         runTime,
-        [&runTime]() { flowSolverState::write(runTime); },
+        [&mesh]() { flowSolverState::write(mesh); },
         [&runTime, stockMotion]()
         {
             if (stockMotion)

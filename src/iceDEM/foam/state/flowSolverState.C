@@ -12,6 +12,7 @@
 #include "completeTime.H"
 #include "IOdictionary.H"
 #include "pairGAMGAgglomeration.H"
+#include "GAMGAgglomeration.H"
 #include "lduPrimitiveMesh.H"
 
 // * * * * * * * * * * * * * * * Local Functions * * * * * * * * * * * * * * //
@@ -85,8 +86,9 @@ Foam::IOobject stateIO(const Foam::Time& runTime, Foam::IOobject::readOption r)
 const char* const Foam::flowSolverState::fileName = "flowSolverState";
 
 
-void Foam::flowSolverState::write(const Time& runTime)
+void Foam::flowSolverState::write(const fvMesh& mesh)
 {
+    const Time& runTime = mesh.time();
     IOdictionary dict(stateIO(runTime, IOobject::NO_READ));
     dict.add(forwardEntry, Switch(pairAgglomerationForward()));
     if
@@ -101,6 +103,11 @@ void Foam::flowSolverState::write(const Time& runTime)
         FatalErrorInFunction
             << "Could not write " << dict.objectPath() << exit(FatalError);
     }
+
+    // The levels in use were built from the flag as it was at the mesh's
+    // last change, not as written: built again from it at the next solve,
+    // as a restart from this time builds them
+    GAMGAgglomeration::Delete(mesh);
 }
 
 
