@@ -4,8 +4,6 @@
 \*---------------------------------------------------------------------------*/
 
 #include "completeTimeWriter.H"
-#include "completeTime.H"
-#include "markingTime.H"
 
 #include "Pstream.H"
 
