@@ -183,6 +183,23 @@ int main(int argc, char *argv[])
     // What the flow's solution depends on beyond the fields (a restart)
     flowSolverState::read(runTime);
 
+    // What a restart from the times written reproduces: binary fields are
+    // exact, but a patch whose values are all equal is written as text
+    // with writePrecision digits (README, known limits of restarts)
+    if
+    (
+        runTime.writeFormat() == IOstream::ASCII
+     || IOstream::defaultPrecision() < 17
+    )
+    {
+        Info<< "iceDEM: writeFormat "
+            << (runTime.writeFormat() == IOstream::ASCII ? "ascii" : "binary")
+            << ", writePrecision " << IOstream::defaultPrecision()
+            << ": a restart from this run's times equals the uninterrupted"
+            << " run to the digits written, not to the bit (binary and 17"
+            << " make it exact)" << nl << endl;
+    }
+
     const sixDoFRigidBodyMotion* hullPtr = structureMotionOf(mesh);
     motionSolver* meshMotion = meshMotionOf(mesh);
     const auto* stockMotion =
