@@ -328,6 +328,12 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
         args.rootPath()/args.globalCaseName()/"system"/Time::controlDictName
     );
 
+    // The Time as the controlDict sets it up, with OpenFOAM's start time
+    const auto asControlDictSays = [&args]()
+    {
+        return autoPtr<Time>(new markingTime(Time::controlDictName, args));
+    };
+
     // What the controlDict asks for; anything unusual: OpenFOAM's own Time
     // (and its own messages)
     dictionary ctrl;
@@ -335,7 +341,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
         IFstream is(dictPath);
         if (!is.good())
         {
-            return autoPtr<Time>(new markingTime(Time::controlDictName, args));
+            return asControlDictSays();
         }
         ctrl.read(is);
         ctrl.remove("FoamFile");
@@ -348,7 +354,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
      && !(startFrom == "startTime" && ctrl.readIfPresent("startTime", requested))
     )
     {
-        return autoPtr<Time>(new markingTime(Time::controlDictName, args));
+        return asControlDictSays();
     }
 
     // The time directories of this (processor) case and their status
@@ -421,7 +427,7 @@ Foam::autoPtr<Foam::Time> Foam::completeTime::createTimeFromComplete
     if (!wanted || completeOnAll(*wanted))
     {
         // Nothing to start from (OpenFOAM says so) or a complete time
-        return autoPtr<Time>(new markingTime(Time::controlDictName, args));
+        return asControlDictSays();
     }
 
     // The last complete time at or before it
