@@ -691,9 +691,11 @@ void World::checkOverlapRange() const
         << (p.isWall() ? "wall " + walls_[p.wall()].name : "body " + std::to_string(bodies_[p.j].id))
         << " overlap by " << p.deepest << " m, as much as their dilation radii's sum "
         << R << " m (a core inside the other: beyond the contact model). The DEM step "
-        << settings_.timeStep << " s did not resolve this impact (estimated contact time "
-        << tc << " s at " << settings_.contactCheckVelocity
-        << " m/s, shorter for faster impacts): reduce deltaT";
+        << settings_.timeStep << " s did not resolve this contact: an impact (estimated"
+        << " contact time " << tc << " s at " << settings_.contactCheckVelocity
+        << " m/s, shorter for faster impacts), or a light body held by contacts that their"
+        << " load has made stiffer than the step resolves (an oscillation that changes sign"
+        << " and grows at every step; the check at the start does not see it): reduce deltaT";
     throw Error(msg.str(), "deltaT");
 }
 
