@@ -13,7 +13,7 @@ can be made again.
       distributions, radii of 1 mm to 1 m, zones, corrections); each field
       createIceField writes is run on by iceDEMFoam (two steps)
   combinations.py dem N [FIRST]        random iceDEMFoam settings on a small
-      field (step, skins, contact model, current, uniform or table wind,
+      field (step, skins, contact model and its damping, current, uniform or table wind,
       floe damping, bodyForceInterval, no domain, periodic, inflow, floor),
       2 s, run with 1 and 2 threads and restarted at 1 s: the three DEM
       states at 2 s must be identical (the 'step' line excepted)
@@ -33,7 +33,7 @@ can be made again.
   combinations.py noflow N [FIRST]     random DEM-only studies as kullukPack
       runs them (iceFloatingFoam -noFlow): a createIceField pack around the
       moored structure (concentration, thickness, floe size, velocity), the
-      DEM's step, K, contact model, current, wind (uniform or table), floe
+      DEM's step, K, contact model and its damping, current, wind (uniform or table), floe
       damping, periodic in x and y, in x, none or inflow/outflow; the 2 m
       box or a random facetedHull inside it, free or held to the plane,
       moored by 3-12 lines of 1e3-1e8 N/m damped by 10-1e5 N s/m, with wind on it; the
@@ -177,7 +177,8 @@ def demProperties(rng, L, W, x0, y0, h):
     p = p.replace('neighbourSkin   0.02;', 'neighbourSkin   %g;' % rng.choice([0.01, 0.05, 0.3]))
     p = p.replace('featureSkin     0.01;', 'featureSkin     %g;' % rng.choice([0, 0.005, 0.02]))
     p = p.replace('contactModel    hertz;',
-                  'contactModel    %s;' % rng.choice(['hertz', 'hertzSimplified']))
+                  'contactModel    %s;\nnormalDamping   %s;'
+                  % (rng.choice(['hertz', 'hertzSimplified']), rng.choice(['perContact', 'perPair'])))
     add = ['water { density 1025; level 0; }']
     if rng.random() < 0.8:
         a, u = rng.uniform(0, 2*math.pi), rng.choice([0, 0.1, 0.5, 1.5])
@@ -596,7 +597,8 @@ def noflowProperties(rng, half):
         p = re.sub(r'\n%s\s*\{(?:[^{}]|\{[^{}]*\})*\}' % block, '\n', p)
     p = re.sub(r'\ndeltaT\s+[^;]+;', '\ndeltaT %g;' % rng.choice([5e-4, 1e-3]), p)
     p = re.sub(r'\ncontactModel\s+[^;]+;',
-               '\ncontactModel %s;' % rng.choice(['hertz', 'hertzSimplified']), p)
+               '\ncontactModel %s;\nnormalDamping %s;'
+               % (rng.choice(['hertz', 'hertzSimplified']), rng.choice(['perContact', 'perPair'])), p)
     p = p.replace('iceSteel {', 'iceIce { materials (ice ice); friction 0.2; restitution 0.3; }\n'
                   '    iceSteel {')
     add = ['drag { type empirical; current (%g %g 0); }'

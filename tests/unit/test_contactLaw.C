@@ -92,16 +92,19 @@ ContactResult expectSameBits
     double dt
 )
 {
+    // Each lane its own damping mass (a pair's damping shared by its
+    // terms' stiffness, ContactLawSettings::dampingPerPair)
+    const double mEffs[2] = {mEff, 0.37*mEff};
     Vec3 xiA = a.xi, xiB = b.xi;
-    const ContactResult rA = law.evaluate(pc, a.g, mEff, a.vRel, xiA, dt);
-    const ContactResult rB = law.evaluate(pc, b.g, mEff, b.vRel, xiB, dt);
+    const ContactResult rA = law.evaluate(pc, a.g, mEffs[0], a.vRel, xiA, dt);
+    const ContactResult rB = law.evaluate(pc, b.g, mEffs[1], b.vRel, xiB, dt);
 
     const ContactGeometry* const g[2] = {&a.g, &b.g};
     const Vec3 vRel[2] = {a.vRel, b.vRel};
     Vec3 xi2[2] = {a.xi, b.xi};
     Vec3* const xi[2] = {&xi2[0], &xi2[1]};
     ContactResult r[2];
-    law.evaluateTwo(pc, g, mEff, vRel, xi, dt, r);
+    law.evaluateTwo(pc, g, mEffs, vRel, xi, dt, r);
 
     const ContactResult* one[2] = {&rA, &rB};
     const Vec3* xiOne[2] = {&xiA, &xiB};

@@ -209,6 +209,77 @@ TEST(restitution, hertzDampingGivesTheRestitution)
 }
 
 
+//- A cube dropped flat on a fixed slab at 1 m/s (gravity off): four
+//  vertex-face terms of equal overlap. Returns the rebound speed ratio;
+//  vz: the cube's vertical velocity after the impact
+double flatLanding(double e, bool dampingPerPair, double& vz)
+{
+    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
+    WorldSettings s = impactSettings(2e-5, e);
+    s.contact.dampingPerPair = dampingPerPair;
+    World w(s);
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, e});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
+    w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+    w.addBody(cube, mat, Vec3(0, 0, h + r + 1e-3), Quat::Identity(), Vec3(0, 0, -v));
+    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    EXPECT_EQ(imp.maxContacts, 4);
+    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexFace});
+    vz = w.bodies()[1].v.z();
+    return imp.speedRatio;
+}
+
+
+// normalDamping perPair: the pair's damping is that of one contact of its
+// terms' summed stiffness, so a face landing flat rebounds at e, as one
+// contact does. perContact (method.md's damping for each term with the
+// pair's m*): n equal terms damp as one contact of n times the stiffness
+// with beta sqrt(n), so four rebound at hertzRestitution(2 beta(e))
+TEST(restitution, aFaceLandingFlatReboundsAtEWithDampingPerPair)
+{
+    for (double e : {0.3, 0.7})
+    {
+        double vz;
+        const double perPair = flatLanding(e, true, vz);
+        const double perContact = flatLanding(e, false, vz);
+        const double fourTerms = hertzRestitution(2*hertzDampingBeta(e));
+        EXPECT_NEAR(perPair, e, 0.01*e) << "e = " << e;
+        EXPECT_NEAR(perContact, fourTerms, 0.02*fourTerms) << "e = " << e;
+        std::printf("e %g: flat landing, perPair %.6f, perContact %.6f (four terms' analytic %.6f)\n",
+                    e, perPair, perContact, fourTerms);
+    }
+}
+
+
+// A pair whose contact is one term of weight 1 keeps the pair's m*: the
+// same trajectory to the bit in both modes (the corner impact of
+// hertzVertexFace)
+TEST(restitution, oneTermIsTheSameInBothDampings)
+{
+    double vz[2];
+    for (int mode = 0; mode < 2; ++mode)
+    {
+        const double r = 0.05, h = 0.5, v = 1.0, E = 1e9, e = 0.3;
+        WorldSettings s = impactSettings(2e-5, e);
+        s.contact.dampingPerPair = mode == 1;
+        World w(s);
+        const int mat = w.addMaterial(ice(E));
+        w.setPairProperties(mat, mat, PairProperties{0.0, e});
+        const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+        const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
+        w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+        const double zc = std::sqrt(3.0)*h + r + 1e-3;
+        w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
+        const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+        EXPECT_EQ(imp.maxContacts, 1);
+        vz[mode] = w.bodies()[1].v.z();
+    }
+    EXPECT_EQ(vz[0], vz[1]);
+}
+
+
 TEST(contactLaw, unknownModelNamesTheEntry)
 {
     WorldSettings s;

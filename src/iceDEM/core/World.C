@@ -600,6 +600,8 @@ std::vector<World::ContactInfo> World::contacts() const
         Vec3 axis = p.axis;
         const int n = findPairContacts(p, axis, found);
         const PairMotion pm = pairMotion(p);
+        double mEff[maxContactsPerPair];
+        dampingMasses(pm, found, n, mEff);
         for (int c = 0; c < n; ++c)
         {
             Vec3 xi = Vec3::Zero();
@@ -611,7 +613,7 @@ std::vector<World::ContactInfo> World::contacts() const
                     xi = sc[m].xi;
                 }
             }
-            const ContactResult r = contactForce(pm, found[c].g, xi, 0);
+            const ContactResult r = contactForce(pm, mEff[c], found[c].g, xi, 0);
             list.push_back
             (
                 {p.i, p.j, found[c].g.type, found[c].g.point, found[c].g.normal, r.forceOnJ, found[c].g.overlap}
@@ -693,9 +695,11 @@ void World::checkOverlapRange() const
         << R << " m (a core inside the other: beyond the contact model). The DEM step "
         << settings_.timeStep << " s did not resolve this contact: an impact (estimated"
         << " contact time " << tc << " s at " << settings_.contactCheckVelocity
-        << " m/s, shorter for faster impacts), or a light body held by contacts that their"
-        << " load has made stiffer than the step resolves (an oscillation that changes sign"
-        << " and grows at every step; the check at the start does not see it): reduce deltaT";
+        << " m/s, shorter for faster impacts), or a light body held by loaded contacts whose"
+        << " stiffness and damping the step does not resolve (an oscillation that changes"
+        << " sign and grows at every step, which the check at the start does not see;"
+        << " normalDamping perPair damps a pair of several contact terms as one contact):"
+        << " reduce deltaT";
     throw Error(msg.str(), "deltaT");
 }
 

@@ -114,22 +114,57 @@ inline Vec3 World::relativeVelocity(const PairMotion& pm, const Vec3& x) const
 }
 
 
+void World::dampingMasses
+(
+    const PairMotion& pm,
+    const FoundContact* found,
+    int n,
+    double* mEff
+) const
+{
+    if (!settings_.contact.dampingPerPair)
+    {
+        for (int c = 0; c < n; ++c) mEff[c] = pm.mEff;
+        return;
+    }
+    // The pair's damping is that of one contact of the terms' summed
+    // stiffness S = sum |w| S_n, set by sqrt(m* S): with m*_t = m* S_n/S a
+    // term's coefficient sqrt(m*_t S_n) is S_n sqrt(m*/S), and the terms'
+    // (each times its |w|, as the law applies it) add up to sqrt(m* S).
+    // The share S_n/S first, so that a lone term of weight 1 keeps m* to
+    // the bit
+    double S[maxContactsPerPair];
+    double sum = 0;
+    for (int c = 0; c < n; ++c)
+    {
+        S[c] = law_->normalStiffness(*pm.coeffs, found[c].g);
+        sum += std::abs(found[c].g.weight)*S[c];
+    }
+    for (int c = 0; c < n; ++c)
+    {
+        mEff[c] = sum > 0 ? pm.mEff*(S[c]/sum) : pm.mEff;
+    }
+}
+
+
 ContactResult World::contactForce
 (
     const PairMotion& pm,
+    double mEff,
     const ContactGeometry& g,
     Vec3& xi,
     double dtTangential
 ) const
 {
     const Vec3 vRel = relativeVelocity(pm, g.point);
-    return law_->evaluate(*pm.coeffs, g, pm.mEff, vRel, xi, dtTangential);
+    return law_->evaluate(*pm.coeffs, g, mEff, vRel, xi, dtTangential);
 }
 
 
 void World::contactForces
 (
     const PairMotion& pm,
+    const double mEff[2],
     const ContactGeometry& g0,
     const ContactGeometry& g1,
     Vec3& xi0,
@@ -141,7 +176,7 @@ void World::contactForces
     const ContactGeometry* const g[2] = {&g0, &g1};
     const Vec3 vRel[2] = {relativeVelocity(pm, g0.point), relativeVelocity(pm, g1.point)};
     Vec3* const xi[2] = {&xi0, &xi1};
-    law_->evaluateTwo(*pm.coeffs, g, pm.mEff, vRel, xi, dtTangential, r);
+    law_->evaluateTwo(*pm.coeffs, g, mEff, vRel, xi, dtTangential, r);
 }
 
 
@@ -300,7 +335,12 @@ void World::pairForces(double dtTangential)
             const int nPrev = p.nContacts;
             clearPairForces(p);
             PairMotion pm{};
-            if (nFound > 0) pm = pairMotion(p);
+            double mEff[maxContactsPerPair];
+            if (nFound > 0)
+            {
+                pm = pairMotion(p);
+                dampingMasses(pm, found, nFound, mEff);
+            }
 
             // Two contacts at a time through the contact law (its square
             // roots overlap), summed one by one in their order
@@ -330,11 +370,11 @@ void World::pairForces(double dtTangential)
                 }
                 if (two == 2)
                 {
-                    contactForces(pm, found[c].g, found[c + 1].g, sc[0].xi, sc[1].xi, dtTangential, r);
+                    contactForces(pm, mEff + c, found[c].g, found[c + 1].g, sc[0].xi, sc[1].xi, dtTangential, r);
                 }
                 else
                 {
-                    r[0] = contactForce(pm, found[c].g, sc[0].xi, dtTangential);
+                    r[0] = contactForce(pm, mEff[c], found[c].g, sc[0].xi, dtTangential);
                 }
                 for (int l = 0; l < two; ++l)
                 {

@@ -196,6 +196,7 @@ struct LawInput
 {
     Real R;             //!< equivalent radius
     Real delta;         //!< overlap
+    Real mEff;          //!< effective mass of its damping
     Real w;             //!< the term's weight (+1, -1 or a fraction)
     V n;                //!< normal, from i to j
     V vRel;             //!< velocity of j relative to i at the contact
@@ -214,7 +215,6 @@ template<class Real, class V>
 void hertzLaw
 (
     const PairCoefficients& c,
-    double mEff,
     double dt,
     bool mindlin,
     double tangentialStiffnessRatio,
@@ -232,7 +232,7 @@ void hertzLaw
     const Real vn = dotOf(in.vRel, n);                  // > 0: separating
     const Real Sn = 2*c.Estar*sqrtRd;                   // dF/ddelta
     const Real elastic = 4.0/3.0*c.Estar*sqrtRd*delta;
-    const Real damping = 2*std::sqrt(5.0/6.0)*c.beta*sqrtOf(mEff*Sn);
+    const Real damping = 2*std::sqrt(5.0/6.0)*c.beta*sqrtOf(in.mEff*Sn);
     // A term of the excess potential (NarrowPhase.H) carries a sign w = +1
     // or -1 (a subtracted term): its potential is w U(delta), and its
     // normal force, damping included, and its tangential spring are those
@@ -291,11 +291,11 @@ ContactResult ContactLaw::evaluate
     const LawInput<double, Vec3> in
     {
         hertzRadius(g, oneRadius_, settings_.maxEdgeRadiusRatio),
-        g.overlap, g.weight, g.normal, vRel,
+        g.overlap, mEff, g.weight, g.normal, vRel,
         g.weightGradientX, g.weightGradient
     };
     LawOutput<double, Vec3> out;
-    hertzLaw(c, mEff, dt, mindlin_, settings_.tangentialStiffnessRatio, in, xi, out);
+    hertzLaw(c, dt, mindlin_, settings_.tangentialStiffnessRatio, in, xi, out);
     ContactResult r;
     r.forceOnJ = out.forceOnJ;
     r.normalForce = out.normalForce;
@@ -309,7 +309,7 @@ void ContactLaw::evaluateTwo
 (
     const PairCoefficients& c,
     const ContactGeometry* const g[2],
-    double mEff,
+    const double mEff[2],
     const Vec3 vRel[2],
     Vec3* const xi[2],
     double dt,
@@ -325,6 +325,7 @@ void ContactLaw::evaluateTwo
             hertzRadius(*g[1], oneRadius_, settings_.maxEdgeRadiusRatio)
         },
         Double2{g[0]->overlap, g[1]->overlap},
+        Double2{mEff[0], mEff[1]},
         Double2{g[0]->weight, g[1]->weight},
         lanes(g[0]->normal, g[1]->normal),
         lanes(vRel[0], vRel[1]),
@@ -333,7 +334,7 @@ void ContactLaw::evaluateTwo
     };
     Vec3x2 s = lanes(*xi[0], *xi[1]);
     LawOutput<Double2, Vec3x2> out;
-    hertzLaw(c, mEff, dt, mindlin_, settings_.tangentialStiffnessRatio, in, s, out);
+    hertzLaw(c, dt, mindlin_, settings_.tangentialStiffnessRatio, in, s, out);
     for (int k = 0; k < 2; ++k)
     {
         *xi[k] = lane(s, k);
@@ -342,6 +343,16 @@ void ContactLaw::evaluateTwo
         r[k].elasticEnergy = out.elasticEnergy[k];
         r[k].coupleOnJ = lane(out.coupleOnJ, k);
     }
+}
+
+
+double ContactLaw::normalStiffness
+(
+    const PairCoefficients& c,
+    const ContactGeometry& g
+) const
+{
+    return 2*c.Estar*std::sqrt(hertzRadius(g, oneRadius_, settings_.maxEdgeRadiusRatio)*g.overlap);
 }
 
 

@@ -61,6 +61,9 @@ using namespace Foam::iceDEMChecks;
         positive(d, "tangentialStiffnessRatio", 2.0/3.0);
     s.contact.maxEdgeRadiusRatio =
         inRange(d, "maxEdgeRadiusRatio", 1, 1e6, 10);
+    s.contact.dampingPerPair =
+        selectName(d, "normalDamping", wordList({"perContact", "perPair"}), "perContact")
+     == "perPair";
 
     s.contactCheckVelocity = positive(d, "contactCheckVelocity", 1);
     s.contactStepsWarn = positive(d, "contactStepsWarn", 10);
