@@ -73,6 +73,44 @@ Quat cornerTowards(const Vec3& dir)
     return rotationFromTo(Vec3(1, 1, 1).normalized(), dir.normalized());
 }
 
+//- A cube of 0.5 m (r = 0.05 m, E = 1 GPa) dropped at 1 m/s (gravity off)
+//  on a fixed slab whose top is at z = 0, its lowest point 1 mm above:
+//  corner down (one vertex-face term) or flat (four of equal overlap), with
+//  the pair's damping per contact or per pair
+struct CubeDrop
+{
+    Impact impact;
+    double mass;        //!< the cube's
+    double vz;          //!< its vertical velocity after the impact
+};
+
+CubeDrop dropCubeOnSlab(double e, bool dampingPerPair, bool cornerDown)
+{
+    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
+    WorldSettings s = impactSettings(2e-5, e);
+    s.contact.dampingPerPair = dampingPerPair;
+    World w(s);
+    const int mat = w.addMaterial(ice(E));
+    w.setPairProperties(mat, mat, PairProperties{0.0, e});
+    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
+    const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
+    w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
+    if (cornerDown)
+    {
+        const double zc = std::sqrt(3.0)*h + r + 1e-3;
+        w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
+    }
+    else
+    {
+        w.addBody(cube, mat, Vec3(0, 0, h + r + 1e-3), Quat::Identity(), Vec3(0, 0, -v));
+    }
+    CubeDrop d;
+    d.impact = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    d.mass = w.bodies()[1].mass;
+    d.vz = w.bodies()[1].v.z();
+    return d;
+}
+
 } // anonymous namespace
 
 
@@ -81,24 +119,12 @@ class hertzVertexFace : public ::testing::TestWithParam<double> {};
 TEST_P(hertzVertexFace, contactTimePeakForceRestitution)
 {
     const double e = GetParam();
-    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
-    const double dt = 2e-5;
-    World w(impactSettings(dt, e));
-    const int mat = w.addMaterial(ice(E));
-    w.setPairProperties(mat, mat, PairProperties{0.0, e});
-    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
-    const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
-
-    // Fixed slab, top at z = 0; cube corner down, its lowest point 1 mm above
-    w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
-    const double zc = std::sqrt(3.0)*h + r + 1e-3;
-    w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
-
-    const Body& b = w.bodies()[1];
-    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
+    const double r = 0.05, v = 1.0, E = 1e9;    // dropCubeOnSlab's
+    const CubeDrop d = dropCubeOnSlab(e, false, true);
+    const Impact& imp = d.impact;
 
     const PairCoefficients c = PairCoefficients::make(ice(E), ice(E), PairProperties{0, 1});
-    const HertzImpact ref(b.mass, r, c.Estar, v);
+    const HertzImpact ref(d.mass, r, c.Estar, v);
 
     EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexFace});
     EXPECT_EQ(imp.maxContacts, 1);
@@ -209,37 +235,6 @@ TEST(restitution, hertzDampingGivesTheRestitution)
 }
 
 
-//- A cube dropped at 1 m/s (gravity off) on a fixed slab, flat (four
-//  vertex-face terms of equal overlap) or corner down (one), with the
-//  pair's damping per contact or per pair; vz: its vertical velocity after
-Impact dropCubeOnSlab(double e, bool dampingPerPair, bool cornerDown, double& vz)
-{
-    const double r = 0.05, h = 0.5, v = 1.0, E = 1e9;
-    WorldSettings s = impactSettings(2e-5, e);
-    s.contact.dampingPerPair = dampingPerPair;
-    World w(s);
-    const int mat = w.addMaterial(ice(E));
-    w.setPairProperties(mat, mat, PairProperties{0.0, e});
-    const int cube = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3::Constant(h)), r));
-    const int slab = w.addShape(DilatedShape(ConvexPolyhedron::box(Vec3(5, 5, 1)), r));
-    w.addBody(slab, mat, Vec3(0, 0, -1 - r), Quat::Identity(), Vec3::Zero(), Vec3::Zero(), BodyMotion::fixed);
-    if (cornerDown)
-    {
-        const double zc = std::sqrt(3.0)*h + r + 1e-3;
-        w.addBody(cube, mat, Vec3(0, 0, zc), cornerTowards(Vec3(0, 0, -1)), Vec3(0, 0, -v));
-    }
-    else
-    {
-        w.addBody(cube, mat, Vec3(0, 0, h + r + 1e-3), Quat::Identity(), Vec3(0, 0, -v));
-    }
-    const Impact imp = runImpact(w, 0, 1, Vec3(0, 0, 1), 1.0);
-    EXPECT_EQ(imp.maxContacts, cornerDown ? 1 : 4);
-    EXPECT_EQ(imp.types, std::set<FeaturePair>{FeaturePair::vertexFace});
-    vz = w.bodies()[1].v.z();
-    return imp;
-}
-
-
 // normalDamping perPair: the pair's damping is that of one contact of its
 // terms' summed stiffness, so a face landing flat rebounds at e, as one
 // contact does. perContact (method.md's damping for each term with the
@@ -249,14 +244,18 @@ TEST(restitution, aFaceLandingFlatReboundsAtEWithDampingPerPair)
 {
     for (double e : {0.3, 0.7})
     {
-        double vz;
-        const double perPair = dropCubeOnSlab(e, true, false, vz).speedRatio;
-        const double perContact = dropCubeOnSlab(e, false, false, vz).speedRatio;
+        const CubeDrop perPair = dropCubeOnSlab(e, true, false);
+        const CubeDrop perContact = dropCubeOnSlab(e, false, false);
+        for (const CubeDrop* d : {&perPair, &perContact})
+        {
+            EXPECT_EQ(d->impact.maxContacts, 4);
+            EXPECT_EQ(d->impact.types, std::set<FeaturePair>{FeaturePair::vertexFace});
+        }
         const double fourTerms = hertzRestitution(2*hertzDampingBeta(e));
-        EXPECT_NEAR(perPair, e, 0.01*e) << "e = " << e;
-        EXPECT_NEAR(perContact, fourTerms, 0.02*fourTerms) << "e = " << e;
+        EXPECT_NEAR(perPair.impact.speedRatio, e, 0.01*e) << "e = " << e;
+        EXPECT_NEAR(perContact.impact.speedRatio, fourTerms, 0.02*fourTerms) << "e = " << e;
         std::printf("e %g: flat landing, perPair %.6f, perContact %.6f (four terms' analytic %.6f)\n",
-                    e, perPair, perContact, fourTerms);
+                    e, perPair.impact.speedRatio, perContact.impact.speedRatio, fourTerms);
     }
 }
 
@@ -265,10 +264,11 @@ TEST(restitution, aFaceLandingFlatReboundsAtEWithDampingPerPair)
 // same trajectory to the bit in both modes (the corner impact)
 TEST(restitution, oneTermIsTheSameInBothDampings)
 {
-    double vz[2];
-    dropCubeOnSlab(0.3, false, true, vz[0]);
-    dropCubeOnSlab(0.3, true, true, vz[1]);
-    EXPECT_EQ(vz[0], vz[1]);
+    const CubeDrop perContact = dropCubeOnSlab(0.3, false, true);
+    const CubeDrop perPair = dropCubeOnSlab(0.3, true, true);
+    EXPECT_EQ(perContact.impact.maxContacts, 1);
+    EXPECT_EQ(perPair.impact.maxContacts, 1);
+    EXPECT_EQ(perContact.vz, perPair.vz);
 }
 
 
