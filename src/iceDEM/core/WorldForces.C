@@ -6,10 +6,8 @@
 #include "World.H"
 #include "worldDetail.H"
 #include "contact/NeighbourList.H"
-#include "prefetch.H"
 
 #include <algorithm>
-#include <cstddef>
 
 namespace iceDEM
 {
@@ -56,8 +54,6 @@ void World::sumBodyChunk
 {
     for (int b = begin; b < end; ++b)
     {
-        // A body's sum is short: its pairs asked for eight bodies ahead
-        if (b + 8 < end) prefetchContactLoad(b + 8);
         const ContactLoad c = contactLoad(b);
         bodies_[b].force = c.force;
         bodies_[b].torque = c.torque;
@@ -75,7 +71,6 @@ void World::sumBodyChunk
         // (hydro/WaterFrame.H); a body's sum is in model order, as before
         for (int b = begin; b < end; ++b)
         {
-            prefetchBodyModels(b, end);
             for (const auto& m : forceModels_)
             {
                 m->addForces(*this, b, b + 1, modelForce_.data(), modelTorque_.data());
@@ -143,17 +138,6 @@ void World::bodyForces(double dtKick, int slowScale)
     }
 
     parallelRegion(N >= settings_.singleThreadBelow, [&] { sumBodyForces(dtKick, slowScale); });
-}
-
-
-void World::prefetchContactLoad(int b) const
-{
-    if (!nlist_) return;
-    const auto& pairs = nlist_->pairs();
-    for (int k = nlist_->bodyBegin(b); k < nlist_->bodyEnd(b); ++k)
-    {
-        prefetchRange(&pairs[nlist_->bodyPair(k)], offsetof(ContactPair, elasticEnergy));
-    }
 }
 
 

@@ -95,34 +95,6 @@ void World::prefetchPair(const ContactPair& p) const
 }
 
 
-void World::prefetchBodyModels(int b, int end) const
-{
-    if (b + 3 < end)
-    {
-        prefetchRange(&shapeOf(b + 3), sizeof(DilatedShape));
-    }
-    if (b + 2 < end)
-    {
-        const DilatedShape& s = shapeOf(b + 2);
-        if (const ConvexPolyhedron* outer = s.storedOuter())
-        {
-            prefetchRange(outer, sizeof(ConvexPolyhedron));
-        }
-        if (const PrismCaps* caps = s.prismCaps())
-        {
-            prefetchRange(caps, sizeof(PrismCaps));
-        }
-    }
-    if (b + 1 < end)
-    {
-        if (const ConvexPolyhedron* outer = shapeOf(b + 1).storedOuter())
-        {
-            prefetchRange(outer->vertices().data(), outer->geometryBytes());
-        }
-    }
-}
-
-
 void World::updateWorldVertices()
 {
     resizeBodyFrames();
