@@ -26,7 +26,9 @@
 #   by their DEM steps) from speed.txt, and
 #   the commits its sessions ran from (commits, joined by '+'; "unknown"
 #   where speed.txt has none); the multi-rate step K (bodyForceInterval in
-#   the point's parameters; 1 where it is absent: the runs before the entry).
+#   the point's parameters; 1 where it is absent: the runs before the entry)
+#   and the contacts' damping (normalDamping; perContact where it is absent:
+#   the only one before the entry).
 #   At the hull (bodies.dat at the write times after the transient): the
 #   mean number of floes whose centre is inside the waterline circle (35 m:
 #   under the hull), and of floes within 60 m of the axis whose top is
@@ -257,7 +259,8 @@ def analyseRun(d, transient):
     r = dict(dir=os.path.basename(d), length=float(p["length"]), width=float(p["width"]),
              thickness=float(p["thickness"]), concentration=float(p["concentration"]),
              seed=int(p["seed"]), deltaT=float(p["deltaT"]),
-             bodyForceInterval=int(p.get("bodyForceInterval", 1)), floeArea=float(p["floeArea"]),
+             bodyForceInterval=int(p.get("bodyForceInterval", 1)),
+             normalDamping=p.get("normalDamping", "perContact"), floeArea=float(p["floeArea"]),
              steadyFrom=transient, steadyTo=S[-1, 0], samples=len(S))
     for k, v in stats(Fh).items():
         r["Fh_" + k] = v
@@ -321,7 +324,7 @@ def readRuns(path, transient):
     """The rows of a study_runs.csv as analyseRun gives them (numbers as float,
     the seed, samples, floes and finished as int, the rest as text)."""
     ints = {"seed", "samples", "floes", "finished", "bodyForceInterval"}
-    texts = {"dir", "domain", "startVelocity", "commits"}   # "7e27389" is a float
+    texts = {"dir", "domain", "startVelocity", "commits", "normalDamping"}   # "7e27389" is a float
     lines = [l.rstrip("\n").split(",") for l in open(path) if l.strip()]
     keys, rows = lines[0], []
     for n, v in enumerate(lines[1:], start=2):
@@ -336,6 +339,7 @@ def readRuns(path, transient):
                 r[k] = int(float(x)) if k in ints else float(x)
             except ValueError:
                 r[k] = x
+        r.setdefault("normalDamping", "perContact")   # rows from before the column
         if r.get("steadyFrom") != transient:
             sys.exit(f"plotStudy: {path} line {n} ({r.get('dir')}): transient "
                      f"{r.get('steadyFrom')} s, this analysis uses {transient} s")
@@ -504,7 +508,7 @@ def writeMarkdown(path, runs):
         if not isinstance(v, (int, float)) or v != v:
             return "n/a"
         return fmt.format(v*scale)
-    lines = ["| h [m] | c | seed | floes | DEM step [s]; K | commit(s) "
+    lines = ["| h [m] | c | seed | floes | DEM step [s]; K; damping | commit(s) "
              "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
              "| largest line tension: mean / max [MN] | load/drive ± 95 % "
              "| pack drift [m/s] | F_z [MN] | contacts per step |",
@@ -512,7 +516,8 @@ def writeMarkdown(path, runs):
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
-            f"| {r['floes']} | {r['deltaT']:g}; {num(r, 'bodyForceInterval', fmt='{:.0f}')} "
+            f"| {r['floes']} | {r['deltaT']:g}; {num(r, 'bodyForceInterval', fmt='{:.0f}')}; "
+            f"{r.get('normalDamping', 'perContact')} "
             f"| {r.get('commits', 'unknown')} "
             f"| **{num(r, 'Fh_mean', 1e-6)} ± {num(r, 'Fh_hw', 1e-6)}** "
             f"| {num(r, 'Fh_p99', 1e-6, '{:.2f}')} | {num(r, 'Fh_max', 1e-6, '{:.2f}')} "
