@@ -55,8 +55,9 @@
 # kullukPack README's "Results so far"); --hullMarkdown FILE: what happens at the
 # hull, one row per thickness and concentration (means over the seeds: |F_h|,
 # F_z, F_z/|F_h|, F_z in lifts of fully submerged floes, floe-hull contacts,
-# floes within 60 m, pushed down, under the hull; the README's "What happens
-# at the hull"); --pointsMarkdown FILE: study.csv as a table, one row per
+# floes within 60 m, pushed down, under the hull; the floes that passed under
+# and beside the hull and were pushed under the water, and the hours counted,
+# from iceClearance (sums over the seeds); the README's "What happens at the hull"); --pointsMarkdown FILE: study.csv as a table, one row per
 # thickness and concentration (the means over the seeds with their 95 %
 # t-intervals across the seeds) (with --convergence: DIR/convergence.csv and
 # DIR/convergence.png, the mean load against the domain's length and width).
@@ -512,7 +513,7 @@ def writeMarkdown(path, runs):
              "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
              "| largest line tension: mean / max [MN] | load/drive ± 95 % "
              "| pack drift [m/s] | F_z [MN] | contacts per step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
@@ -532,18 +533,28 @@ def writeHullMarkdown(path, runs):
     """What happens at the hull, one row per thickness and concentration: the
     means over the seeds of the horizontal and vertical ice loads, F_z in
     lifts of a fully submerged floe of the point's mean area, the floe-hull
-    contacts (every output step) and the floes near, pushed down and under
-    the hull (bodies.dat snapshots, hullCounts)."""
+    contacts (every output step), the floes near, pushed down and under
+    the hull (bodies.dat snapshots, hullCounts) and the flux at the hull
+    (iceClearance, clearanceCounts): the floes that passed under the hull,
+    beside it (35-60 m from the axis) and, of those, pushed under the water
+    near it: the sums over the seeds, and the hours they cover."""
     def mean(rs, k, scale=1.0, fmt="{:.3f}"):
         v = [r.get(k, float("nan")) for r in rs]
         v = [x for x in v if isinstance(x, (int, float))]
         if not v or any(x != x for x in v):
             return "n/a"
         return fmt.format(scale*sum(v)/len(v))
+
+    def total(rs, k, fmt="{:.0f}"):
+        # the sum over the seeds that counted (runs before iceClearance: NaN)
+        v = [r.get(k, float("nan")) for r in rs]
+        v = [x for x in v if isinstance(x, (int, float)) and x == x]
+        return fmt.format(sum(v)) if v else "n/a"
     lines = ["| h [m] | c | seeds | mean \\|F_h\\| [MN] | mean F_z [MN] | F_z / \\|F_h\\| "
              "| F_z in submerged-floe lifts | floe-hull contacts | floes within 60 m "
-             "| pushed down | under the hull |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| pushed down | under the hull | passed under the hull | passed beside it "
+             "| of those pushed under the water | hours counted |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for (h, c), rs in byPoint(runs):
         rs = [dict(r, FzOverFh=r["Fz_mean"]/r["Fh_mean"],
                    lifts=r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY))
@@ -553,7 +564,9 @@ def writeHullMarkdown(path, runs):
             f"| {mean(rs, 'Fz_mean', 1e-6, '{:.2f}')} | {mean(rs, 'FzOverFh', fmt='{:.1f}')} "
             f"| {mean(rs, 'lifts', fmt='{:.1f}')} | {mean(rs, 'hullContacts_mean', fmt='{:.1f}')} "
             f"| {mean(rs, 'floesNearHull', fmt='{:.1f}')} | {mean(rs, 'floesPushedDown', fmt='{:.2f}')} "
-            f"| {mean(rs, 'floesUnderHull', fmt='{:.2f}')} |")
+            f"| {mean(rs, 'floesUnderHull', fmt='{:.2f}')} | {total(rs, 'clearUnder')} "
+            f"| {total(rs, 'clearAround')} | {total(rs, 'clearSubmerged')} "
+            f"| {total(rs, 'clearHours', '{:.2f}')} |")
     writeLines(path, "--hullMarkdown", lines)
 
 
