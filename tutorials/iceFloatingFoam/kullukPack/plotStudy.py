@@ -513,7 +513,7 @@ def writeMarkdown(path, runs):
              "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
              "| largest line tension: mean / max [MN] | load/drive ± 95 % "
              "| pack drift [m/s] | F_z [MN] | contacts per step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
