@@ -451,6 +451,12 @@ def byPoint(runs):
     return sorted(groups.items())
 
 
+def markdownHeader(header):
+    """A markdown table's header and its rule, one cell per column (an
+    escaped \\| inside a cell is not a column)."""
+    return [header, "|" + "---|"*header.replace("\\|", "").strip("|").count("|") + "---|"]
+
+
 def writeLines(path, option, lines):
     """The lines of a markdown table into path (option names it in the error)."""
     try:
@@ -467,9 +473,8 @@ def writePointsMarkdown(path, agg):
     def pm(r, k, scale=1e-6, fmt="{:.3f}"):
         v, ci = r[k]*scale, r[k + "_ci"]*scale
         return fmt.format(v) + (" ± " + fmt.format(ci) if ci == ci else " ± n/a")
-    lines = ["| h [m] | c | seeds | mean \\|F_h\\| [MN] | std [MN] | P99 [MN] | max [MN] "
-             "| largest line tension: mean [MN] | its max [MN] | load/drive |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+    lines = markdownHeader("| h [m] | c | seeds | mean \\|F_h\\| [MN] | std [MN] | P99 [MN] | max [MN] "
+                           "| largest line tension: mean [MN] | its max [MN] | load/drive |")
     for r in agg:
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seeds']} "
@@ -509,11 +514,10 @@ def writeMarkdown(path, runs):
         if not isinstance(v, (int, float)) or v != v:
             return "n/a"
         return fmt.format(v*scale)
-    lines = ["| h [m] | c | seed | floes | DEM step [s]; K; damping | commit(s) "
-             "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
-             "| largest line tension: mean / max [MN] | load/drive ± 95 % "
-             "| pack drift [m/s] | F_z [MN] | contacts per step |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = markdownHeader("| h [m] | c | seed | floes | DEM step [s]; K; damping | commit(s) "
+                           "| mean \\|F_h\\| ± 95 % [MN] | P99 [MN] | max [MN] "
+                           "| largest line tension: mean / max [MN] | load/drive ± 95 % "
+                           "| pack drift [m/s] | F_z [MN] | contacts per step |")
     for r in sorted(runs, key=lambda r: (r["thickness"], r["concentration"], r["seed"])):
         lines.append(
             f"| {r['thickness']:g} | {r['concentration']*100:.0f} % | {r['seed']} "
@@ -550,11 +554,10 @@ def writeHullMarkdown(path, runs):
         v = [r.get(k, float("nan")) for r in rs]
         v = [x for x in v if isinstance(x, (int, float)) and x == x]
         return fmt.format(sum(v)) if v else "n/a"
-    lines = ["| h [m] | c | seeds | mean \\|F_h\\| [MN] | mean F_z [MN] | F_z / \\|F_h\\| "
-             "| F_z in submerged-floe lifts | floe-hull contacts | floes within 60 m "
-             "| pushed down | under the hull | passed under the hull | passed beside it "
-             "| of those pushed under the water | hours counted |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = markdownHeader("| h [m] | c | seeds | mean \\|F_h\\| [MN] | mean F_z [MN] | F_z / \\|F_h\\| "
+                           "| F_z in submerged-floe lifts | floe-hull contacts | floes within 60 m "
+                           "| pushed down | under the hull | passed under the hull | passed beside it "
+                           "| of those pushed under the water | hours counted |")
     for (h, c), rs in byPoint(runs):
         rs = [dict(r, FzOverFh=r["Fz_mean"]/r["Fh_mean"],
                    lifts=r["Fz_mean"]/(r["floeArea"]*h*(WATER_DENSITY - ICE_DENSITY)*GRAVITY))
