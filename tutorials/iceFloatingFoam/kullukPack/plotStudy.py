@@ -28,7 +28,9 @@
 #   where speed.txt has none); the multi-rate step K (bodyForceInterval in
 #   the point's parameters; 1 where it is absent: the runs before the entry)
 #   and the contacts' damping (normalDamping; perContact where it is absent:
-#   the only one before the entry).
+#   the only one before the entry); the stretches run at the fallback step
+#   after a stop (fallbackStretches, and fallbackTime: the simulated seconds
+#   they cover; from fallback.txt, 0 where the point has none).
 #   At the hull (bodies.dat at the write times after the transient): the
 #   mean number of floes whose centre is inside the waterline circle (35 m:
 #   under the hull), and of floes within 60 m of the axis whose top is
@@ -237,6 +239,25 @@ def hullCounts(d, tStart, floes, pieces=0):
             np.mean(list(near.values())), np.mean(vx))
 
 
+def fallbackStretches(d):
+    """The stretches the point ran at its fallback step (runStudy
+    -fallbackDeltaT) and the simulated seconds they cover, from its
+    fallback.txt (a line 'from until deltaT K (message)' per stretch; a
+    '# the stretch resumed at A s: to B s' line moves the last one's end);
+    0 and 0 where the point has none."""
+    stretches = []
+    path = os.path.join(d, "fallback.txt")
+    if os.path.exists(path):
+        for line in open(path):
+            m = re.match(r"# the stretch resumed at \S+ s: to (\S+) s", line)
+            if m and stretches:
+                stretches[-1][1] = float(m.group(1))
+            elif line.strip() and not line.startswith("#"):
+                v = line.split()
+                stretches.append([float(v[0]), float(v[1])])
+    return len(stretches), sum(b - a for a, b in stretches)
+
+
 def analyseRun(d, transient):
     header, X = readSeries(d)
     if X is None:
@@ -294,6 +315,7 @@ def analyseRun(d, transient):
             if c not in commits:
                 commits.append(c)
         r["commits"] = "+".join(commits)
+    r["fallbackStretches"], r["fallbackTime"] = fallbackStretches(d)
     floes = r.get("floes") or int([l.split()[1] for l in open(os.path.join(d, "log.createIceField"))
                                     if l.split()[:1] == ["floes"]][-1])
     # the structure's pieces have the ids floes .. floes + pieces - 1 (the
@@ -324,7 +346,7 @@ def analyseRun(d, transient):
 def readRuns(path, transient):
     """The rows of a study_runs.csv as analyseRun gives them (numbers as float,
     the seed, samples, floes and finished as int, the rest as text)."""
-    ints = {"seed", "samples", "floes", "finished", "bodyForceInterval"}
+    ints = {"seed", "samples", "floes", "finished", "bodyForceInterval", "fallbackStretches"}
     texts = {"dir", "domain", "startVelocity", "commits", "normalDamping"}   # "7e27389" is a float
     lines = [l.rstrip("\n").split(",") for l in open(path) if l.strip()]
     keys, rows = lines[0], []
@@ -365,6 +387,8 @@ def main():
                     help="also the points still running or stopped (column finished = 0)")
     ap.add_argument("--runs", help="a study_runs.csv of points analysed before; a finished "
                     "folder in DIR replaces its row")
+    ap.add_argument("--against", help="a study_runs.csv of the same points run otherwise "
+                    "(another step, damping, code): DIR/against.txt, point by point")
     ap.add_argument("--markdown", help="write the table of every run (markdown) to this file")
     ap.add_argument("--hullMarkdown", help="write what happens at the hull, one row per "
                     "thickness and concentration (markdown), to this file")
@@ -405,6 +429,9 @@ def main():
               f"{r['Tmax_p99']/1e6:6.3f} | {r['ratio']:7.4f} +- {r['ratioHalfWidth']:6.4f} | "
               f"{r.get('floeStepsPerSecond', float('nan')):9.0f} {r.get('contactsPerStep', float('nan')):8.1f}")
 
+    if a.against:
+        writeAgainst(os.path.join(a.dir, "against.txt"), runs, a.against, a.transient)
+        print(f"plotStudy: the runs against {a.against} -> {a.dir}/against.txt")
     if a.markdown:
         writeMarkdown(a.markdown, runs)
         print(f"plotStudy: the table of {len(runs)} runs -> {a.markdown}")
@@ -440,6 +467,42 @@ def main():
         print(f"plotStudy: the thickness exponents -> {a.dir}/trends.csv")
     figures(a.dir, runs, agg)
     return 0
+
+
+def writeAgainst(path, runs, otherPath, transient):
+    """The runs against the same points (dir) of another study_runs.csv:
+    mean |F_h| with each run's 95 % batch-means half-width, the relative
+    difference, and the difference over the root-sum-square of the two
+    half-widths (|z| > 1: outside the 95 % interval of the difference of two
+    independent runs); the DEM steps' fallback stretches and the wall times
+    (comparable only where both ran on one machine); last, the mean relative
+    difference over the points with its 95 % Student t interval."""
+    other = {r["dir"]: r for r in readRuns(otherPath, transient)}
+    lines = [f"# {len(runs)} runs against {otherPath}: mean |F_h| +- 95 % half-width [MN] "
+             "this vs other, this/other - 1, z = difference / rss(half-widths),",
+             "# fallback stretches (simulated s at the fallback step), wall time [s] this / other",
+             "# (the same machine only: machines differ by up to 2x)"]
+    rel, worst = [], 0.0
+    for r in sorted(runs, key=lambda r: (r["seed"], r["dir"])):
+        o = other.get(r["dir"])
+        if o is None:
+            lines.append(f"{r['dir']:14s} not in {otherPath}")
+            continue
+        fa, ha, fb, hb = (r["Fh_mean"]/1e6, r["Fh_hw"]/1e6, o["Fh_mean"]/1e6, o["Fh_hw"]/1e6)
+        z = (fa - fb)/math.hypot(ha, hb)
+        worst = max(worst, abs(z))
+        rel.append(fa/fb - 1)
+        lines.append(f"{r['dir']:14s} {fa:.3f} +- {ha:.3f} vs {fb:.3f} +- {hb:.3f} "
+                     f"{100*(fa/fb - 1):+6.1f} %  z {z:+.2f}   fallback "
+                     f"{r.get('fallbackStretches', 0)} ({r.get('fallbackTime', 0):g} s)   wall "
+                     f"{r.get('wallTime', float('nan')):.1f} / {o.get('wallTime', float('nan')):.1f}")
+    if len(rel) > 1:
+        m, sd = float(np.mean(rel)), float(np.std(rel, ddof=1))
+        lines.append(f"{len(rel)} points: this/other - 1 = {100*m:+.1f} +- "
+                     f"{100*t975(len(rel) - 1)*sd/math.sqrt(len(rel)):.1f} % (95 %, t), "
+                     f"worst |z| {worst:.2f}")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 def byPoint(runs):
