@@ -5,9 +5,12 @@
 #
 #   python3 plotStudy.py --dir studyRuns [--transient 300] [--convergence]
 #                        [--runs results/studyFull_study_runs.csv]
+#                        [--against results/studyPerPair_study_runs.csv]
 #                        [--markdown FILE] [--hullMarkdown FILE]
 #                        [--pointsMarkdown FILE]
 #
+# --against CSV: DIR/against.txt, each run against the same point of
+# another study_runs.csv (writeAgainst; README "Outputs").
 # --runs CSV: rows of a study_runs.csv written before (a study that ran on
 # several machines or sessions whose point folders are gone): every row whose
 # point has no finished folder in DIR is taken as it is; a finished folder
